@@ -1,0 +1,132 @@
+/* Exact grid DDA over cells [0, extent) on each axis, one cell a step.
+ *
+ * Robustness (why it is written this way):
+ *  - the crossing t of every cell boundary is computed from the integer cell index
+ *    ((c + 1 - o) / d), never accumulated, so no error grows with the number of steps;
+ *  - the entry cell is clamped into the grid, and on the axis the ray enters through it is
+ *    set exactly (first or last slab), so float rounding at the box never loses a ray;
+ *  - axes with a zero direction never step (their crossing t is +inf) and no division by
+ *    zero reaches a result: GLSL leaves x/0 undefined;
+ *  - rays with NaN/Inf in origin, direction or tmin, NaN tmax, a zero direction or
+ *    tmin > tmax are misses. tmax = +inf is fine.
+ * Ties between axes step x before y before z, so every backend walks the same cells.
+ * Per-lane code has no branches: it runs unchanged on SIMD lanes. */
+
+VX_STRUCT(vx_dda)
+    vx_f32 ox, oy, oz;   /* ray origin relative to the grid's min corner */
+    vx_f32 ix, iy, iz;   /* 1 / direction, 0 where the direction is 0 */
+    vx_i32 sx, sy, sz;   /* step per axis: -1, 0 or +1 */
+    vx_i32 cx, cy, cz;   /* current cell */
+    vx_f32 nx, ny, nz;   /* t at which the ray leaves the current cell, per axis */
+    vx_f32 t;            /* t at which the ray entered the current cell */
+    vx_f32 tmax;         /* the ray's tmax */
+    vx_u32 face;         /* VX_FACE_* the current cell was entered through */
+    vx_u32 status;       /* VX_STATUS_* */
+    vx_u32 steps;        /* cells left behind so far */
+VX_END_STRUCT(vx_dda)
+
+/* One axis of the ray/box slab test. */
+VX_STRUCT(vx_slab)
+    vx_f32 inv, t0, t1;
+    vx_i32 step;
+VX_END_STRUCT(vx_slab)
+
+VX_FN vx_slab vx_slab_make(vx_f32 o, vx_f32 d, float extent) {
+    vx_slab s;
+    vx_mask moving = d != 0.0f;
+    s.inv = vx_sel(moving, 1.0f / vx_sel(moving, d, 1.0f), 0.0f);
+    s.step = vx_sel(d > 0.0f, 1, vx_sel(d < 0.0f, -1, 0));
+    vx_f32 ta = (0.0f - o) * s.inv;
+    vx_f32 tb = (extent - o) * s.inv;
+    vx_mask inside = o >= 0.0f && o < extent;
+    s.t0 = vx_sel(moving, vx_fmin(ta, tb), vx_sel(inside, -VX_INF, VX_INF));
+    s.t1 = vx_sel(moving, vx_fmax(ta, tb), vx_sel(inside, VX_INF, -VX_INF));
+    return s;
+}
+
+/* Start cell along one axis: floor of the entry point, clamped into [0, extent). */
+VX_FN vx_i32 vx_dda_start_cell(vx_f32 p, int extent) {
+    vx_f32 q = vx_fmin(vx_fmax(p, 0.0f), vx_i2f(extent - 1));
+    return vx_f2i(vx_floor(q));
+}
+
+/* t at which the ray leaves cell c along one axis. */
+VX_FN vx_f32 vx_dda_exit_t(vx_i32 c, vx_i32 step, vx_f32 o, vx_f32 inv) {
+    return vx_sel(step != 0, (vx_i2f(c + vx_sel(step > 0, 1, 0)) - o) * inv, VX_INF);
+}
+
+/* Sets up the walk of ray r (in world units) through a grid whose cell (0,0,0) has its
+ * min corner at world position (gx, gy, gz) and that has (ex, ey, ez) cells. */
+VX_FN vx_dda vx_dda_begin(vx_ray r, float gx, float gy, float gz, int ex, int ey, int ez) {
+    vx_dda d;
+    d.ox = r.ox - gx;
+    d.oy = r.oy - gy;
+    d.oz = r.oz - gz;
+    vx_mask valid = vx_is_finite(r.ox) && vx_is_finite(r.oy) && vx_is_finite(r.oz) &&
+                    vx_is_finite(r.dx) && vx_is_finite(r.dy) && vx_is_finite(r.dz) &&
+                    vx_is_finite(r.tmin) && !vx_is_nan(r.tmax) && r.tmin <= r.tmax &&
+                    (r.dx != 0.0f || r.dy != 0.0f || r.dz != 0.0f) && ex > 0 && ey > 0 && ez > 0;
+    vx_slab sx = vx_slab_make(d.ox, r.dx, vx_i2f(ex));
+    vx_slab sy = vx_slab_make(d.oy, r.dy, vx_i2f(ey));
+    vx_slab sz = vx_slab_make(d.oz, r.dz, vx_i2f(ez));
+    d.ix = sx.inv; d.iy = sy.inv; d.iz = sz.inv;
+    d.sx = sx.step; d.sy = sy.step; d.sz = sz.step;
+
+    vx_f32 tbox = vx_fmax(sx.t0, vx_fmax(sy.t0, sz.t0));
+    vx_f32 tenter = vx_fmax(r.tmin, tbox);
+    vx_f32 texit = vx_fmin(r.tmax, vx_fmin(sx.t1, vx_fmin(sy.t1, sz.t1)));
+    valid = valid && tenter <= texit;
+
+    /* Entered through a box face (not started inside): which one, x before y before z. */
+    vx_mask through_face = tbox >= r.tmin;
+    vx_mask ax = through_face && sx.t0 == tbox;
+    vx_mask ay = through_face && !ax && sy.t0 == tbox;
+    vx_mask az = through_face && !ax && !ay;
+
+    vx_f32 tp = vx_sel(valid, tenter, 0.0f);
+    vx_f32 px = vx_sel(valid, d.ox + r.dx * tp, 0.0f);
+    vx_f32 py = vx_sel(valid, d.oy + r.dy * tp, 0.0f);
+    vx_f32 pz = vx_sel(valid, d.oz + r.dz * tp, 0.0f);
+    d.cx = vx_sel(ax, vx_sel(d.sx > 0, 0, ex - 1), vx_dda_start_cell(px, ex));
+    d.cy = vx_sel(ay, vx_sel(d.sy > 0, 0, ey - 1), vx_dda_start_cell(py, ey));
+    d.cz = vx_sel(az, vx_sel(d.sz > 0, 0, ez - 1), vx_dda_start_cell(pz, ez));
+    d.nx = vx_dda_exit_t(d.cx, d.sx, d.ox, d.ix);
+    d.ny = vx_dda_exit_t(d.cy, d.sy, d.oy, d.iy);
+    d.nz = vx_dda_exit_t(d.cz, d.sz, d.oz, d.iz);
+
+    d.face = vx_sel(ax, vx_sel(d.sx > 0, VX_FACE_NEG_X, VX_FACE_POS_X),
+             vx_sel(ay, vx_sel(d.sy > 0, VX_FACE_NEG_Y, VX_FACE_POS_Y),
+             vx_sel(az, vx_sel(d.sz > 0, VX_FACE_NEG_Z, VX_FACE_POS_Z), VX_FACE_INSIDE)));
+    d.t = tenter;
+    d.tmax = r.tmax;
+    d.status = vx_sel(valid, VX_STATUS_ACTIVE, VX_STATUS_MISS);
+    d.steps = vx_sel(valid, 0u, 0u); /* a zero of lane type */
+    return d;
+}
+
+/* Moves lanes in `go` to the next cell; those that leave the grid or pass tmax miss. */
+VX_FN vx_dda vx_dda_advance(vx_dda d, vx_mask go, int ex, int ey, int ez) {
+    vx_mask bx = d.nx <= d.ny && d.nx <= d.nz;
+    vx_mask by = !bx && d.ny <= d.nz;
+    vx_mask mx = go && bx;
+    vx_mask my = go && by;
+    vx_mask mz = go && !bx && !by;
+    vx_f32 tnext = vx_sel(bx, d.nx, vx_sel(by, d.ny, d.nz));
+
+    d.cx = vx_sel(mx, d.cx + d.sx, d.cx);
+    d.cy = vx_sel(my, d.cy + d.sy, d.cy);
+    d.cz = vx_sel(mz, d.cz + d.sz, d.cz);
+    d.nx = vx_sel(mx, vx_dda_exit_t(d.cx, d.sx, d.ox, d.ix), d.nx);
+    d.ny = vx_sel(my, vx_dda_exit_t(d.cy, d.sy, d.oy, d.iy), d.ny);
+    d.nz = vx_sel(mz, vx_dda_exit_t(d.cz, d.sz, d.oz, d.iz), d.nz);
+    d.face = vx_sel(mx, vx_sel(d.sx > 0, VX_FACE_NEG_X, VX_FACE_POS_X),
+             vx_sel(my, vx_sel(d.sy > 0, VX_FACE_NEG_Y, VX_FACE_POS_Y),
+             vx_sel(mz, vx_sel(d.sz > 0, VX_FACE_NEG_Z, VX_FACE_POS_Z), d.face)));
+
+    vx_mask out = d.cx < 0 || d.cy < 0 || d.cz < 0 || d.cx >= ex || d.cy >= ey || d.cz >= ez ||
+                  tnext > d.tmax;
+    d.status = vx_sel(go && out, VX_STATUS_MISS, d.status);
+    d.t = vx_sel(go, vx_fmax(d.t, tnext), d.t);
+    d.steps = d.steps + vx_sel(go, 1u, 0u);
+    return d;
+}

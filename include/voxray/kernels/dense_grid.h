@@ -1,0 +1,79 @@
+/* Traversal of the dense reference grid (layout/dense_grid_layout.h): the exact DDA
+ * visits every cell and tests its occupancy bit. Needs prelude.h, ray.h and dda.h first.
+ * Included once per lane set; no include guard on purpose (see kernels/cpu_lanes.hpp). */
+
+/* Header fields every step needs, read once per ray (uniform across lanes). */
+VX_STRUCT(vx_dense_grid)
+    int ox, oy, oz;      /* world position of voxel (0,0,0) */
+    int ex, ey, ez;      /* extent in voxels */
+    uint chunks_x, chunks_xy;
+    uint table, data;    /* word offsets */
+VX_END_STRUCT(vx_dense_grid)
+
+VX_FN vx_dense_grid vx_dense_load(VX_BLOB blob) {
+    vx_dense_grid g;
+    g.ox = vx_u2i(vx_load(blob, VX_DG_HEADER_ORIGIN + 0));
+    g.oy = vx_u2i(vx_load(blob, VX_DG_HEADER_ORIGIN + 1));
+    g.oz = vx_u2i(vx_load(blob, VX_DG_HEADER_ORIGIN + 2));
+    g.ex = vx_u2i(vx_load(blob, VX_DG_HEADER_EXTENT + 0));
+    g.ey = vx_u2i(vx_load(blob, VX_DG_HEADER_EXTENT + 1));
+    g.ez = vx_u2i(vx_load(blob, VX_DG_HEADER_EXTENT + 2));
+    g.chunks_x = vx_load(blob, VX_DG_HEADER_CHUNKS + 0);
+    g.chunks_xy = g.chunks_x * vx_load(blob, VX_DG_HEADER_CHUNKS + 1);
+    g.table = vx_load(blob, VX_DG_HEADER_TABLE);
+    g.data = vx_load(blob, VX_DG_HEADER_DATA);
+    return g;
+}
+
+/* Word offset of the chunk record holding cell (cx, cy, cz), or VX_DG_EMPTY_CHUNK.
+ * Lanes outside `active` read word 0 instead (always in bounds). */
+VX_FN vx_u32 vx_dense_chunk(VX_BLOB blob, vx_dense_grid g, vx_i32 cx, vx_i32 cy, vx_i32 cz, vx_mask active) {
+    vx_u32 slot = vx_i2u(cx >> VX_DG_CHUNK_BITS) + vx_i2u(cy >> VX_DG_CHUNK_BITS) * g.chunks_x +
+                  vx_i2u(cz >> VX_DG_CHUNK_BITS) * g.chunks_xy;
+    vx_u32 entry = vx_gather(blob, vx_sel(active, g.table + slot, 0u));
+    vx_mask present = active && entry != VX_DG_EMPTY_CHUNK;
+    return vx_sel(present, g.data + entry * VX_DG_CHUNK_WORDS, VX_DG_EMPTY_CHUNK);
+}
+
+VX_FN vx_u32 vx_dense_local(vx_i32 cx, vx_i32 cy, vx_i32 cz) {
+    return vx_i2u((cx & VX_DG_CHUNK_MASK) | ((cy & VX_DG_CHUNK_MASK) << 4) | ((cz & VX_DG_CHUNK_MASK) << 8));
+}
+
+/* One step: a hit if the current cell is solid, else move to the next cell. */
+VX_FN vx_dda vx_dense_step(VX_BLOB blob, vx_dense_grid g, vx_dda d) {
+    vx_mask active = d.status == VX_STATUS_ACTIVE;
+    vx_u32 chunk = vx_dense_chunk(blob, g, d.cx, d.cy, d.cz, active);
+    vx_mask present = chunk != VX_DG_EMPTY_CHUNK;
+    vx_u32 local = vx_dense_local(d.cx, d.cy, d.cz);
+    vx_u32 bits = vx_gather(blob, vx_sel(present, chunk + (local >> 5u), 0u));
+    vx_mask solid = present && ((bits >> (local & 31u)) & 1u) != 0u;
+    d.status = vx_sel(solid, VX_STATUS_HIT, d.status);
+    return vx_dda_advance(d, active && !solid, g.ex, g.ey, g.ez);
+}
+
+VX_FN vx_hit vx_dense_finish(VX_BLOB blob, vx_dense_grid g, vx_dda d) {
+    vx_hit h;
+    vx_mask is_hit = d.status == VX_STATUS_HIT;
+    vx_u32 chunk = vx_dense_chunk(blob, g, d.cx, d.cy, d.cz, is_hit);
+    vx_u32 local = vx_dense_local(d.cx, d.cy, d.cz);
+    vx_mask present = chunk != VX_DG_EMPTY_CHUNK;
+    vx_u32 word = vx_gather(blob, vx_sel(present, chunk + VX_DG_OCCUPANCY_WORDS + (local >> 2u), 0u));
+    h.t = vx_sel(is_hit, d.t, VX_INF);
+    h.x = vx_sel(is_hit, d.cx + g.ox, 0);
+    h.y = vx_sel(is_hit, d.cy + g.oy, 0);
+    h.z = vx_sel(is_hit, d.cz + g.oz, 0);
+    h.face = vx_sel(is_hit, d.face, VX_FACE_NONE);
+    h.material = vx_sel(present, (word >> ((local & 3u) * 8u)) & 255u, 0u);
+    h.steps = d.steps;
+    h.status = d.status;
+    return h;
+}
+
+/* Closest hit; for the dense grid the first solid cell is also a valid any-hit answer. */
+VX_FN vx_hit vx_dense_grid_trace(VX_BLOB blob, vx_ray r, uint mode) {
+    VX_UNUSED(mode);
+    vx_dense_grid g = vx_dense_load(blob);
+    vx_dda d = vx_dda_begin(r, vx_i2f(g.ox), vx_i2f(g.oy), vx_i2f(g.oz), g.ex, g.ey, g.ez);
+    while (vx_any(d.status == VX_STATUS_ACTIVE)) d = vx_dense_step(blob, g, d);
+    return vx_dense_finish(blob, g, d);
+}

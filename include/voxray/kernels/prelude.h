@@ -1,0 +1,92 @@
+/* The portable kernel dialect. One traversal source compiles as:
+ *   VX_DIALECT_CPP    C++ scalar lanes   (types: float, int32_t, bool)
+ *   VX_DIALECT_CPP    C++ SIMD lanes     (GCC vector types; see kernels/cpu_lanes.hpp)
+ *   VX_DIALECT_OPENCL OpenCL C 1.2       (PoCL; source embedded at build time)
+ *   VX_DIALECT_GLSL   GLSL 4.50 -> SPIR-V (glslang at build time; buffers by device address)
+ *
+ * Rules for kernel code (so that the SIMD mode stays one source with the GPU modes):
+ *  - per-lane types are vx_f32, vx_i32, vx_u32 and vx_mask; uniform values use float/uint/int;
+ *  - no `if` on per-lane values inside a step function: use vx_sel(mask, a, b);
+ *  - conversions and loads go through the vx_* helpers below; structs are passed by value
+ *    and returned (no inout, no pointers), which all three languages allow.
+ * In C++ the helpers are functions defined per lane namespace (cpu_lanes.hpp); here they
+ * are macros for the GPU dialects.
+ */
+#ifndef VOXRAY_KERNELS_PRELUDE_H
+#define VOXRAY_KERNELS_PRELUDE_H
+
+#include "voxray/layout/ray_hit_layout.h"
+
+#define vx_sel(m, a, b) ((m) ? (a) : (b))
+
+#if defined(VX_DIALECT_GLSL)
+#define VX_UNUSED(x)
+#else
+#define VX_UNUSED(x) (void)(x)
+#endif
+
+#if defined(VX_DIALECT_OPENCL)
+#pragma OPENCL FP_CONTRACT OFF
+#define VX_FN static inline
+#define VX_STRUCT(name) typedef struct name {
+#define VX_END_STRUCT(name) } name;
+#define VX_BLOB __global const uint*
+#define VX_INF INFINITY
+typedef float vx_f32;
+typedef int vx_i32;
+typedef uint vx_u32;
+typedef bool vx_mask;
+#define vx_load(b, i) ((b)[(i)])
+#define vx_gather(b, i) ((b)[(i)])
+#define vx_i2f(x) convert_float(x)
+#define vx_u2f(x) convert_float(x)
+#define vx_f2i(x) convert_int(x)
+#define vx_i2u(x) as_uint(x)
+#define vx_u2i(x) as_int(x)
+#define vx_f_bits(x) as_uint(x)
+#define vx_floor(x) floor(x)
+#define vx_fmin(a, b) fmin((a), (b))
+#define vx_fmax(a, b) fmax((a), (b))
+#define vx_any(m) (m)
+
+#elif defined(VX_DIALECT_GLSL)
+#define VX_FN
+#define VX_STRUCT(name) struct name {
+#define VX_END_STRUCT(name) };
+#define VX_BLOB vx_words
+#define VX_INF uintBitsToFloat(0x7f800000u)
+#define vx_f32 float
+#define vx_i32 int
+#define vx_u32 uint
+#define vx_mask bool
+#define vx_load(b, i) ((b).w[(i)])
+#define vx_gather(b, i) ((b).w[(i)])
+#define vx_i2f(x) float(x)
+#define vx_u2f(x) float(x)
+#define vx_f2i(x) int(x)
+#define vx_i2u(x) uint(x)
+#define vx_u2i(x) int(x)
+#define vx_f_bits(x) floatBitsToUint(x)
+#define vx_floor(x) floor(x)
+#define vx_fmin(a, b) min((a), (b))
+#define vx_fmax(a, b) max((a), (b))
+#define vx_any(m) (m)
+/* Structure data, rays and hits are reached by buffer device address: no descriptor
+ * range limit (lavapipe's maxStorageBufferRange is 128 MiB) applies to them. */
+layout(buffer_reference, std430, buffer_reference_align = 4) readonly buffer vx_words { uint w[]; };
+
+#else /* C++: the including file (cpu_lanes.hpp) supplies types and helpers. */
+#define VX_DIALECT_CPP 1
+#define VX_FN inline __attribute__((always_inline))
+#define VX_STRUCT(name) struct name {
+#define VX_END_STRUCT(name) };
+#define VX_BLOB const std::uint32_t*
+#define VX_INF __builtin_inff()
+#endif
+
+/* A float is finite when its exponent bits are not all ones (works without isfinite,
+ * which fast-math style compilers may fold away). */
+#define vx_is_finite(x) ((vx_f_bits(x) & 0x7f800000u) != 0x7f800000u)
+#define vx_is_nan(x) ((vx_f_bits(x) & 0x7fffffffu) > 0x7f800000u)
+
+#endif
