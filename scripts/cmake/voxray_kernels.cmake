@@ -9,22 +9,28 @@ set(VOXRAY_KERNEL_SOURCES
     kernels/dense_grid.h)
 set(VOXRAY_KERNEL_NAMES dense_grid)
 
-set(VOXRAY_FLATTEN_SCRIPT ${CMAKE_CURRENT_LIST_DIR}/voxray_flatten.cmake)
-
-# voxray_flatten(OUTPUT <file> PREAMBLE <file> EPILOGUE <file>)
-# Writes PREAMBLE, the kernel sources and EPILOGUE into OUTPUT at build time.
+# voxray_flatten(OUTPUT <file> [CPP_STRING <name>] PREAMBLE <file> EPILOGUE <file>)
+# Writes PREAMBLE, the kernel sources and EPILOGUE into OUTPUT at build time; with
+# CPP_STRING, as a C++ header holding the text in a constant of that name.
 function(voxray_flatten)
-    cmake_parse_arguments(arg "" "OUTPUT;PREAMBLE;EPILOGUE" "" ${ARGN})
+    cmake_parse_arguments(arg "" "OUTPUT;PREAMBLE;EPILOGUE;CPP_STRING" "" ${ARGN})
+    if(NOT TARGET voxray_flatten)
+        add_executable(voxray_flatten ${PROJECT_SOURCE_DIR}/scripts/kernel_tools/flatten.cpp)
+        target_compile_features(voxray_flatten PRIVATE cxx_std_20)
+    endif()
     set(sources "")
     foreach(s ${VOXRAY_KERNEL_SOURCES})
         list(APPEND sources ${PROJECT_SOURCE_DIR}/include/voxray/${s})
     endforeach()
-    file(GLOB all_kernel_headers ${PROJECT_SOURCE_DIR}/include/voxray/kernels/*.h
-                                 ${PROJECT_SOURCE_DIR}/include/voxray/layout/*.h)
-    string(REPLACE ";" "|" files_arg "${arg_PREAMBLE};${sources};${arg_EPILOGUE}")
+    file(GLOB kernel_headers ${PROJECT_SOURCE_DIR}/include/voxray/kernels/*.h
+                             ${PROJECT_SOURCE_DIR}/include/voxray/layout/*.h)
+    set(cpp_args "")
+    if(arg_CPP_STRING)
+        set(cpp_args --cpp-string ${arg_CPP_STRING})
+    endif()
     add_custom_command(OUTPUT ${arg_OUTPUT}
-        COMMAND ${CMAKE_COMMAND} -DINCLUDE_DIR=${PROJECT_SOURCE_DIR}/include "-DFILES=${files_arg}"
-                -DOUTPUT=${arg_OUTPUT} -P ${VOXRAY_FLATTEN_SCRIPT}
-        DEPENDS ${all_kernel_headers} ${arg_PREAMBLE} ${arg_EPILOGUE} ${VOXRAY_FLATTEN_SCRIPT}
+        COMMAND voxray_flatten ${PROJECT_SOURCE_DIR}/include ${arg_OUTPUT} ${cpp_args}
+                ${arg_PREAMBLE} ${sources} ${arg_EPILOGUE}
+        DEPENDS voxray_flatten ${kernel_headers} ${arg_PREAMBLE} ${arg_EPILOGUE}
         COMMENT "Flattening voxray kernels into ${arg_OUTPUT}" VERBATIM)
 endfunction()
