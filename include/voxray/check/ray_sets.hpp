@@ -8,6 +8,7 @@
 #include <span>
 #include <vector>
 
+#include <glm/common.hpp>
 #include <glm/geometric.hpp>
 
 #include "voxray/core/box.hpp"

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cstdint>
 
+#include <glm/common.hpp>
 #include <glm/vec3.hpp>
 
 namespace voxray {

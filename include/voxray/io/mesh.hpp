@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include <glm/common.hpp>
 #include <glm/vec3.hpp>
 
 namespace voxray::io {

@@ -18,6 +18,8 @@
 #include <string>
 #include <string_view>
 #include <system_error>
+#include <type_traits>
+#include <utility>
 
 #include "voxray/core/error.hpp"
 

@@ -9,7 +9,7 @@
  *    zero reaches a result: GLSL leaves x/0 undefined;
  *  - rays with NaN/Inf in origin, direction or tmin, NaN tmax, a zero direction or
  *    tmin > tmax are misses. tmax = +inf is fine.
- * Ties between axes step x before y before z, so every backend walks the same cells.
+ * Axes that reach a boundary at the same t step together (see vx_dda_advance).
  * Per-lane code has no branches: it runs unchanged on SIMD lanes. */
 
 VX_STRUCT(vx_dda)
@@ -104,14 +104,15 @@ VX_FN vx_dda vx_dda_begin(vx_ray r, float gx, float gy, float gz, int ex, int ey
     return d;
 }
 
-/* Moves lanes in `go` to the next cell; those that leave the grid or pass tmax miss. */
+/* Moves lanes in `go` to the next cell; those that leave the grid or pass tmax miss.
+ * Every axis whose boundary lies at the nearest t steps at once: a ray through an edge or
+ * corner goes straight to the diagonal cell instead of visiting side cells for zero
+ * length (which would report hits on voxels the ray only touches). */
 VX_FN vx_dda vx_dda_advance(vx_dda d, vx_mask go, int ex, int ey, int ez) {
-    vx_mask bx = d.nx <= d.ny && d.nx <= d.nz;
-    vx_mask by = !bx && d.ny <= d.nz;
-    vx_mask mx = go && bx;
-    vx_mask my = go && by;
-    vx_mask mz = go && !bx && !by;
-    vx_f32 tnext = vx_sel(bx, d.nx, vx_sel(by, d.ny, d.nz));
+    vx_f32 tnext = vx_fmin(d.nx, vx_fmin(d.ny, d.nz));
+    vx_mask mx = go && d.nx == tnext;
+    vx_mask my = go && d.ny == tnext;
+    vx_mask mz = go && d.nz == tnext;
 
     d.cx = vx_sel(mx, d.cx + d.sx, d.cx);
     d.cy = vx_sel(my, d.cy + d.sy, d.cy);
@@ -119,6 +120,7 @@ VX_FN vx_dda vx_dda_advance(vx_dda d, vx_mask go, int ex, int ey, int ez) {
     d.nx = vx_sel(mx, vx_dda_exit_t(d.cx, d.sx, d.ox, d.ix), d.nx);
     d.ny = vx_sel(my, vx_dda_exit_t(d.cy, d.sy, d.oy, d.iy), d.ny);
     d.nz = vx_sel(mz, vx_dda_exit_t(d.cz, d.sz, d.oz, d.iz), d.nz);
+    /* On an edge or corner the entry face is a tie; report the first stepped axis. */
     d.face = vx_sel(mx, vx_sel(d.sx > 0, VX_FACE_NEG_X, VX_FACE_POS_X),
              vx_sel(my, vx_sel(d.sy > 0, VX_FACE_NEG_Y, VX_FACE_POS_Y),
              vx_sel(mz, vx_sel(d.sz > 0, VX_FACE_NEG_Z, VX_FACE_POS_Z), d.face)));

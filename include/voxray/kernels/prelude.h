@@ -74,6 +74,12 @@ typedef bool vx_mask;
 /* Structure data, rays and hits are reached by buffer device address: no descriptor
  * range limit (lavapipe's maxStorageBufferRange is 128 MiB) applies to them. */
 layout(buffer_reference, std430, buffer_reference_align = 4) readonly buffer vx_words { uint w[]; };
+/* Words that are plain identifiers in C++ and OpenCL C but keywords (`out`) or reserved
+ * (`active`) in GLSL 4.50, renamed so kernel code may use them as variable names. Code
+ * after the kernels (the Vulkan entry point) must not use them as qualifiers. Prefer
+ * other names in new kernel code. */
+#define out vx_glsl_out
+#define active vx_glsl_active
 
 #else /* C++: the including file (cpu_lanes.hpp) supplies types and helpers. */
 #define VX_DIALECT_CPP 1

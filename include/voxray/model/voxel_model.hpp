@@ -2,12 +2,16 @@
 // (1..255; 0 is empty), plus the palette. Storage is a hash map of 16^3 chunks, so a
 // world of 65536 voxels per axis costs memory for its occupied chunks only.
 #pragma once
+#include <algorithm>
 #include <array>
+#include <bit>
+#include <cstring>
 #include <cstdint>
 #include <memory>
 #include <unordered_map>
 #include <vector>
 
+#include <glm/common.hpp>  // box.hpp uses glm::min/max
 #include <glm/vec3.hpp>
 
 #include "voxray/core/box.hpp"
@@ -69,9 +73,7 @@ public:
         }
         if (!c) return;
         box3i local;
-        std::uint32_t n = 0;
-        for (int i = 0; i < chunk_voxels; ++i)
-            if (c->voxels[i]) { ++n; local.include(local_position(i)); }
+        std::uint32_t n = count_row_spans(*c, local);
         c->count = n;
         if (n == 0) return;
         count_ += n;
@@ -146,6 +148,32 @@ private:
         constexpr std::int64_t bias = coordinate_limit >> chunk_bits;
         auto part = [&](int shift) { return int(std::int64_t((key >> shift) & 0x1FFFFF) - bias) << chunk_bits; };
         return {part(0), part(21), part(42)};
+    }
+    // Counts a chunk's solid voxels and their local bounds, one 16-voxel x row
+    // (two 64-bit words) at a time: empty rows, the common case, cost two loads.
+    static std::uint32_t count_row_spans(const chunk& c, box3i& local) {
+        constexpr std::uint64_t low7 = 0x7F7F7F7F7F7F7F7Full;
+        std::uint32_t n = 0;
+        for (int row = 0; row < chunk_edge * chunk_edge; ++row) {
+            std::uint64_t w[2];
+            std::memcpy(w, c.voxels.data() + row * chunk_edge, sizeof w);
+            if ((w[0] | w[1]) == 0) continue;
+            int first = chunk_edge, last = -1;
+            for (int h = 0; h < 2; ++h) {
+                // High bit of each byte set iff that byte is non-zero.
+                std::uint64_t solid = (((w[h] & low7) + low7) | w[h]) & ~low7;
+                if (!solid) continue;
+                n += std::uint32_t(std::popcount(solid));
+                bool little = std::endian::native == std::endian::little;
+                int lo = (little ? std::countr_zero(solid) : std::countl_zero(solid)) / 8;
+                int hi = 7 - (little ? std::countl_zero(solid) : std::countr_zero(solid)) / 8;
+                first = std::min(first, h * 8 + lo);
+                last = std::max(last, h * 8 + hi);
+            }
+            glm::ivec3 p{0, row & (chunk_edge - 1), row >> chunk_bits};
+            local.include(box3i{{first, p.y, p.z}, {last + 1, p.y + 1, p.z + 1}});
+        }
+        return n;
     }
     void recompute_bounds() const {
         bounds_ = {};

@@ -98,4 +98,13 @@ private:
     std::shared_ptr<state> state_;
 };
 
+// Owning handle of an RTCScene (released with rtcReleaseScene), so scene classes can be
+// moved without hand-written move operations.
+struct scene_release {
+    void operator()(RTCScene s) const {
+        if (s) rtcReleaseScene(s);
+    }
+};
+using scene_handle = std::unique_ptr<RTCSceneTy, scene_release>;
+
 }  // namespace voxray::embree

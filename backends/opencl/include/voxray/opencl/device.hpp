@@ -1,0 +1,128 @@
+// Choosing the OpenCL device. By default the first GPU of any platform, else the first
+// device of any type (PoCL's CPU device on machines without a GPU). Options narrow the
+// choice by case-insensitive substrings of the platform and device names.
+#pragma once
+#include <CL/cl.h>
+
+#include <algorithm>
+#include <cctype>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "voxray/opencl/error.hpp"
+
+namespace voxray {
+
+struct opencl_options {
+    std::string platform;  // substring of the platform name; empty: any
+    std::string device;    // substring of the device name; empty: any
+    bool prefer_gpu = true;  // among the matches, take a GPU before other device types
+};
+
+namespace opencl_detail {
+
+inline std::string platform_string(cl_platform_id p, cl_platform_info what) {
+    std::size_t size = 0;
+    check(clGetPlatformInfo(p, what, 0, nullptr, &size), "clGetPlatformInfo");
+    std::string s(size, '\0');
+    check(clGetPlatformInfo(p, what, size, s.data(), nullptr), "clGetPlatformInfo");
+    while (!s.empty() && s.back() == '\0') s.pop_back();
+    return s;
+}
+
+inline std::string device_string(cl_device_id d, cl_device_info what) {
+    std::size_t size = 0;
+    check(clGetDeviceInfo(d, what, 0, nullptr, &size), "clGetDeviceInfo");
+    std::string s(size, '\0');
+    check(clGetDeviceInfo(d, what, size, s.data(), nullptr), "clGetDeviceInfo");
+    while (!s.empty() && s.back() == '\0') s.pop_back();
+    return s;
+}
+
+template <class T>
+T device_value(cl_device_id d, cl_device_info what) {
+    T value{};
+    check(clGetDeviceInfo(d, what, sizeof(T), &value, nullptr), "clGetDeviceInfo");
+    return value;
+}
+
+inline bool contains_nocase(const std::string& text, const std::string& part) {
+    auto lower = [](std::string s) {
+        for (auto& c : s) c = char(std::tolower(static_cast<unsigned char>(c)));
+        return s;
+    };
+    return lower(text).find(lower(part)) != std::string::npos;
+}
+
+struct device_choice {
+    cl_platform_id platform = nullptr;
+    cl_device_id device = nullptr;
+    std::string platform_name, device_name;
+};
+
+// What was found, for error messages: "'PoCL': ['pthread-...'], 'Other': []".
+inline std::string describe(const std::vector<std::pair<std::string, std::vector<std::string>>>& found) {
+    std::string s;
+    for (auto& [platform, devices] : found) {
+        if (!s.empty()) s += ", ";
+        s += "'" + platform + "': [";
+        for (std::size_t i = 0; i < devices.size(); ++i) s += (i ? ", '" : "'") + devices[i] + "'";
+        s += "]";
+    }
+    return s.empty() ? "nothing" : s;
+}
+
+inline constexpr const char* zero_devices_hint =
+    ". If PoCL is installed, note that it reports zero devices when its cache folder is not "
+    "writable: set POCL_CACHE_DIR to a writable folder (by default it uses $HOME/.cache/pocl)";
+
+inline device_choice select_device(const opencl_options& options) {
+    cl_uint platform_count = 0;
+    cl_int status = clGetPlatformIDs(0, nullptr, &platform_count);
+    if (status == -1001 /* CL_PLATFORM_NOT_FOUND_KHR: an ICD loader without drivers */) platform_count = 0;
+    else check(status, "clGetPlatformIDs");
+    if (platform_count == 0)
+        throw opencl_error(std::string("OpenCL: found 0 platforms (is an OpenCL driver installed? Debian: "
+                                       "pocl-opencl-icd)") + zero_devices_hint, CL_DEVICE_NOT_FOUND);
+    std::vector<cl_platform_id> platforms(platform_count);
+    check(clGetPlatformIDs(platform_count, platforms.data(), nullptr), "clGetPlatformIDs");
+
+    std::vector<std::pair<std::string, std::vector<std::string>>> found;
+    device_choice first_any, first_gpu;
+    for (cl_platform_id p : platforms) {
+        std::string pname = platform_string(p, CL_PLATFORM_NAME);
+        found.push_back({pname, {}});
+        cl_uint count = 0;
+        status = clGetDeviceIDs(p, CL_DEVICE_TYPE_ALL, 0, nullptr, &count);
+        if (status == CL_DEVICE_NOT_FOUND) continue;  // a platform with no devices is not an error
+        check(status, "clGetDeviceIDs");
+        std::vector<cl_device_id> devices(count);
+        check(clGetDeviceIDs(p, CL_DEVICE_TYPE_ALL, count, devices.data(), nullptr), "clGetDeviceIDs");
+        for (cl_device_id d : devices) {
+            std::string dname = device_string(d, CL_DEVICE_NAME);
+            found.back().second.push_back(dname);
+            if (!device_value<cl_bool>(d, CL_DEVICE_AVAILABLE)) continue;
+            if (!options.platform.empty() && !contains_nocase(pname, options.platform)) continue;
+            if (!options.device.empty() && !contains_nocase(dname, options.device)) continue;
+            device_choice c{p, d, pname, dname};
+            if (!first_any.device) first_any = c;
+            if (!first_gpu.device && (device_value<cl_device_type>(d, CL_DEVICE_TYPE) & CL_DEVICE_TYPE_GPU))
+                first_gpu = c;
+        }
+    }
+    if (options.prefer_gpu && first_gpu.device) return first_gpu;
+    if (first_any.device) return first_any;
+
+    std::string wanted;
+    if (!options.platform.empty()) wanted += " platform matching '" + options.platform + "'";
+    if (!options.device.empty()) wanted += " device matching '" + options.device + "'";
+    bool none_at_all = std::all_of(found.begin(), found.end(), [](auto& f) { return f.second.empty(); });
+    throw opencl_error("OpenCL: no available" + (wanted.empty() ? std::string(" device") : wanted) +
+                           "; found " + std::to_string(platform_count) + " platform(s) with devices " +
+                           describe(found) + (none_at_all ? zero_devices_hint : ""),
+                       CL_DEVICE_NOT_FOUND);
+}
+
+}  // namespace opencl_detail
+}  // namespace voxray

@@ -1,0 +1,132 @@
+// The OpenCL engine for one structure kernel: the blob lives in one device buffer, rays
+// and hits go through two more that are reused while they are big enough. One engine
+// per thread: an engine's kernel arguments and buffers are not guarded.
+#pragma once
+#include <CL/cl.h>
+
+#include <algorithm>
+#include <cstdint>
+#include <limits>
+#include <memory>
+#include <span>
+#include <string>
+
+#include "voxray/core/hit.hpp"
+#include "voxray/core/ray.hpp"
+#include "voxray/opencl/buffer.hpp"
+#include "voxray/opencl/program_cache.hpp"
+
+namespace voxray::opencl_detail {
+
+// Work-items per group. 64 fills a wavefront (AMD) or two warps (NVIDIA) and is a
+// multiple of every common SIMD width; the kernel may allow less (register pressure).
+inline constexpr std::size_t preferred_group_size = 64;
+
+template <class Kernel>
+class opencl_engine {
+public:
+    explicit opencl_engine(opencl_options options) : ctx_(acquire_device_context(options)) {
+        cl_int status = CL_SUCCESS;
+        queue_ = queue_handle(clCreateCommandQueue(ctx_->context(), ctx_->device(), 0, &status));
+        check(status, "clCreateCommandQueue", "opening device '" + ctx_->device_name() + "'");
+
+        std::string entry = std::string("vx_trace_") + Kernel::name;
+        kernel_ = kernel_handle(clCreateKernel(ctx_->program(), entry.c_str(), &status));
+        if (status == CL_INVALID_KERNEL_NAME)
+            throw opencl_error("OpenCL: the voxray program has no kernel '" + entry + "': add VX_OPENCL_ENTRY(" +
+                                   Kernel::name + ") to backends/opencl/kernels/entry.cl",
+                               status);
+        check(status, "clCreateKernel", "looking up " + entry);
+
+        std::size_t kernel_max = 0, multiple = 1;
+        check(clGetKernelWorkGroupInfo(kernel_.get(), ctx_->device(), CL_KERNEL_WORK_GROUP_SIZE, sizeof kernel_max,
+                                       &kernel_max, nullptr),
+              "clGetKernelWorkGroupInfo");
+        check(clGetKernelWorkGroupInfo(kernel_.get(), ctx_->device(), CL_KERNEL_PREFERRED_WORK_GROUP_SIZE_MULTIPLE,
+                                       sizeof multiple, &multiple, nullptr),
+              "clGetKernelWorkGroupInfo");
+        local_size_ = choose_group_size(kernel_max, multiple);
+    }
+
+    // Copies the blob to the device (blocking: the caller's span may die right after).
+    void upload(std::span<const std::uint32_t> blob) {
+        if (blob.empty()) fail("OpenCL: cannot upload an empty structure blob");
+        std::uint64_t bytes = std::uint64_t(blob.size()) * sizeof(std::uint32_t);
+        check_alloc_limit("the structure blob", bytes, ctx_->max_alloc_bytes(), ctx_->device_name());
+        blob_.reserve(ctx_->context(), bytes);
+        check(clEnqueueWriteBuffer(queue_.get(), blob_.get(), CL_TRUE, 0, static_cast<std::size_t>(bytes),
+                                   blob.data(), 0, nullptr, nullptr),
+              "clEnqueueWriteBuffer", "uploading the structure blob");
+        uploaded_ = true;
+    }
+
+    // Structure edits: for now the whole blob is sent again.
+    void update(std::span<const std::uint32_t> blob) { upload(blob); }
+
+    void trace(std::span<const ray> rays, std::span<hit> hits, std::uint32_t mode) {
+        if (hits.size() < rays.size())
+            fail("OpenCL: ", rays.size(), " rays but room for only ", hits.size(), " hits");
+        if (rays.empty()) return;
+        if (!uploaded_) fail("OpenCL: trace before any structure was uploaded");
+
+        // Rays go in batches that fit one allocation and a 32-bit count (a real limit
+        // only on small devices; one batch everywhere else).
+        std::uint64_t batch = std::min<std::uint64_t>(rays.size(), ctx_->max_alloc_bytes() / VX_HIT_BYTES);
+        batch = std::min<std::uint64_t>(batch, std::numeric_limits<cl_uint>::max() - local_size_);
+        if (batch == 0) fail("OpenCL: device '", ctx_->device_name(), "' cannot allocate even one ray record");
+        rays_.reserve(ctx_->context(), batch * VX_RAY_BYTES);
+        hits_.reserve(ctx_->context(), batch * VX_HIT_BYTES);
+
+        for (std::size_t first = 0; first < rays.size(); first += batch) {
+            cl_uint count = static_cast<cl_uint>(std::min<std::uint64_t>(batch, rays.size() - first));
+            // Blocking write: if a later call throws, no transfer still points at the
+            // caller's rays. The kernel would wait for the copy anyway.
+            check(clEnqueueWriteBuffer(queue_.get(), rays_.get(), CL_TRUE, 0, std::size_t(count) * VX_RAY_BYTES,
+                                       rays.data() + first, 0, nullptr, nullptr),
+                  "clEnqueueWriteBuffer", "sending rays");
+            cl_mem blob = blob_.get(), in = rays_.get(), out = hits_.get();
+            cl_uint m = mode;
+            check(clSetKernelArg(kernel_.get(), 0, sizeof blob, &blob), "clSetKernelArg", "setting the blob");
+            check(clSetKernelArg(kernel_.get(), 1, sizeof in, &in), "clSetKernelArg", "setting the rays");
+            check(clSetKernelArg(kernel_.get(), 2, sizeof out, &out), "clSetKernelArg", "setting the hits");
+            check(clSetKernelArg(kernel_.get(), 3, sizeof count, &count), "clSetKernelArg", "setting the count");
+            check(clSetKernelArg(kernel_.get(), 4, sizeof m, &m), "clSetKernelArg", "setting the mode");
+            // The global size is rounded up to whole groups; the kernel skips the extra items.
+            std::size_t global = (std::size_t(count) + local_size_ - 1) / local_size_ * local_size_;
+            check(clEnqueueNDRangeKernel(queue_.get(), kernel_.get(), 1, nullptr, &global, &local_size_, 0, nullptr,
+                                         nullptr),
+                  "clEnqueueNDRangeKernel", "tracing " + std::to_string(count) + " rays");
+            check(clEnqueueReadBuffer(queue_.get(), hits_.get(), CL_TRUE, 0, std::size_t(count) * VX_HIT_BYTES,
+                                      hits.data() + first, 0, nullptr, nullptr),
+                  "clEnqueueReadBuffer", "reading hits");
+        }
+    }
+
+    std::string device_name() const { return ctx_->device_name(); }
+    std::string platform_name() const { return ctx_->platform_name(); }
+    // Seconds the shared program took to build (once per device and process).
+    double program_build_seconds() const { return ctx_->build_seconds(); }
+    bool correctly_rounded_division() const { return ctx_->correctly_rounded_division(); }
+    std::uint64_t max_alloc_bytes() const { return ctx_->max_alloc_bytes(); }
+    std::size_t work_group_size() const { return local_size_; }
+
+private:
+    // The largest multiple of the device's preferred multiple that is at most
+    // preferred_group_size and allowed for this kernel; at least 1.
+    static std::size_t choose_group_size(std::size_t kernel_max, std::size_t multiple) {
+        std::size_t limit = std::min(preferred_group_size, std::max<std::size_t>(kernel_max, 1));
+        multiple = std::max<std::size_t>(multiple, 1);
+        return multiple <= limit ? limit / multiple * multiple : limit;
+    }
+
+    std::shared_ptr<device_context> ctx_;
+    queue_handle queue_;
+    kernel_handle kernel_;
+    device_buffer blob_{CL_MEM_READ_ONLY, "the structure blob"};
+    device_buffer rays_{CL_MEM_READ_ONLY, "rays"};
+    device_buffer hits_{CL_MEM_WRITE_ONLY, "hits"};
+    std::size_t local_size_ = 1;
+    bool uploaded_ = false;
+};
+
+}  // namespace voxray::opencl_detail

@@ -1,0 +1,112 @@
+// One OpenCL context per device, with the voxray program built in it once. Engines on the
+// same device share it through a process-wide registry, so a second tracer costs no
+// second build (PoCL: about 0.5 s cold). The registry holds weak references: the context
+// goes away with the last engine that used it, never during static destruction.
+#pragma once
+#include <CL/cl.h>
+
+#include <chrono>
+#include <map>
+#include <memory>
+#include <mutex>
+#include <string>
+
+#include "voxray/generated/opencl_kernels.hpp"
+#include "voxray/opencl/device.hpp"
+#include "voxray/opencl/error.hpp"
+#include "voxray/opencl/handles.hpp"
+
+namespace voxray::opencl_detail {
+
+// Build logs can run to megabytes when every line of a long program fails; the start of
+// the log is where the first (causal) error is.
+inline constexpr std::size_t max_build_log_chars = 16384;
+
+class device_context {
+public:
+    explicit device_context(const device_choice& choice) : choice_(choice) {
+        cl_int status = CL_SUCCESS;
+        cl_context_properties props[] = {CL_CONTEXT_PLATFORM,
+                                         reinterpret_cast<cl_context_properties>(choice.platform), 0};
+        context_ = context_handle(clCreateContext(props, 1, &choice_.device, nullptr, nullptr, &status));
+        check(status, "clCreateContext", "opening device '" + choice_.device_name + "'");
+        max_alloc_ = device_value<cl_ulong>(choice_.device, CL_DEVICE_MAX_MEM_ALLOC_SIZE);
+        max_group_ = device_value<std::size_t>(choice_.device, CL_DEVICE_MAX_WORK_GROUP_SIZE);
+        auto fp = device_value<cl_device_fp_config>(choice_.device, CL_DEVICE_SINGLE_FP_CONFIG);
+        correctly_rounded_ = (fp & CL_FP_CORRECTLY_ROUNDED_DIVIDE_SQRT) != 0;
+        build();
+    }
+
+    cl_context context() const { return context_.get(); }
+    cl_device_id device() const { return choice_.device; }
+    cl_program program() const { return program_.get(); }
+    const std::string& device_name() const { return choice_.device_name; }
+    const std::string& platform_name() const { return choice_.platform_name; }
+    std::uint64_t max_alloc_bytes() const { return max_alloc_; }
+    std::size_t max_work_group_size() const { return max_group_; }
+    // Whether the program was built with -cl-fp32-correctly-rounded-divide-sqrt; without
+    // it 1/d may differ from C++ in the last bit, and t with it (within tolerance).
+    bool correctly_rounded_division() const { return correctly_rounded_; }
+    double build_seconds() const { return build_seconds_; }
+    const std::string& build_options() const { return options_; }
+
+private:
+    void build() {
+        auto start = std::chrono::steady_clock::now();
+        const char* source = voxray_opencl_kernel_source;
+        cl_int status = CL_SUCCESS;
+        program_ = program_handle(clCreateProgramWithSource(context_.get(), 1, &source, nullptr, &status));
+        check(status, "clCreateProgramWithSource");
+        // -cl-std: the kernels are OpenCL C 1.2 (PoCL offers nothing newer anyway).
+        // Correctly rounded division: only where the device offers it (the option is
+        // invalid elsewhere); it makes the DDA's 1/d match the CPU backends bit for bit.
+        options_ = "-cl-std=CL1.2";
+        if (correctly_rounded_) options_ += " -cl-fp32-correctly-rounded-divide-sqrt";
+        status = clBuildProgram(program_.get(), 1, &choice_.device, options_.c_str(), nullptr, nullptr);
+        if (status != CL_SUCCESS) {
+            std::string log = build_log();
+            if (log.size() > max_build_log_chars) log = log.substr(0, max_build_log_chars) + "\n[... log truncated]";
+            throw opencl_error(std::string("OpenCL: clBuildProgram failed: ") + cl_status_name(status) + " (" +
+                                   std::to_string(status) + ") building the voxray kernels for '" +
+                                   choice_.device_name + "' with options '" + options_ + "'. Build log:\n" + log,
+                               status);
+        }
+        build_seconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    }
+
+    std::string build_log() const {
+        std::size_t size = 0;
+        if (clGetProgramBuildInfo(program_.get(), choice_.device, CL_PROGRAM_BUILD_LOG, 0, nullptr, &size) !=
+            CL_SUCCESS)
+            return "(no build log available)";
+        std::string log(size, '\0');
+        clGetProgramBuildInfo(program_.get(), choice_.device, CL_PROGRAM_BUILD_LOG, size, log.data(), nullptr);
+        while (!log.empty() && log.back() == '\0') log.pop_back();
+        return log;
+    }
+
+    device_choice choice_;
+    context_handle context_;
+    program_handle program_;
+    std::uint64_t max_alloc_ = 0;
+    std::size_t max_group_ = 1;
+    bool correctly_rounded_ = false;
+    double build_seconds_ = 0;
+    std::string options_;
+};
+
+// The shared context of the device `options` select, created (and its program built)
+// on first use.
+inline std::shared_ptr<device_context> acquire_device_context(const opencl_options& options) {
+    static std::mutex mutex;
+    static std::map<cl_device_id, std::weak_ptr<device_context>> registry;
+    device_choice choice = select_device(options);
+    std::lock_guard lock(mutex);
+    auto& slot = registry[choice.device];
+    if (auto existing = slot.lock()) return existing;
+    auto fresh = std::make_shared<device_context>(choice);
+    slot = fresh;
+    return fresh;
+}
+
+}  // namespace voxray::opencl_detail

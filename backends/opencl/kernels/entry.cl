@@ -1,0 +1,15 @@
+/* voxray OpenCL backend: one __kernel per structure kernel, placed after the portable
+ * kernel files. The host looks the entry point up as "vx_trace_" + Kernel::name
+ * (kernels/kernel_ids.hpp). A new structure adds one VX_OPENCL_ENTRY line.
+ *
+ * One work-item traces one ray. The host rounds the global size up to a multiple of the
+ * work-group size, so items past `count` do nothing. Rays and hits are the 32-byte
+ * records of layout/ray_hit_layout.h, identical on host and device. */
+#define VX_OPENCL_ENTRY(name)                                                            \
+    __kernel void vx_trace_##name(__global const uint* blob, __global const vx_ray* rays, \
+                                  __global vx_hit* hits, uint count, uint mode) {        \
+        size_t i = get_global_id(0);                                                     \
+        if (i < count) hits[i] = vx_##name##_trace(blob, rays[i], mode);                 \
+    }
+
+VX_OPENCL_ENTRY(dense_grid)

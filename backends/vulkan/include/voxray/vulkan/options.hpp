@@ -1,0 +1,18 @@
+// Start-up settings of the Vulkan backend.
+#pragma once
+#include <string>
+
+namespace voxray {
+
+struct vulkan_options {
+    // Use the first device whose name contains this text (case-sensitive). Empty: the
+    // environment variable VOXRAY_VULKAN_DEVICE if set, else the first discrete GPU, else
+    // integrated, virtual, and last a CPU implementation such as lavapipe.
+    std::string device;
+    // Always go through staging buffers and copy commands, as on a discrete GPU without
+    // host-visible device memory, even where every memory type is host-visible (tests use
+    // this to exercise that path on lavapipe).
+    bool force_staging = false;
+};
+
+}  // namespace voxray
