@@ -121,7 +121,7 @@ public:
     void begin(const ply_element& e, std::uint64_t i) {
         do {
             if (!lines_.next(rest_))
-                fail(name_, ":", lines_.line_number(), ": unexpected end of file in '", e.name, "' element ", i,
+                fail(name_, ":", lines_.line_number() + 1, ": unexpected end of file in '", e.name, "' element ", i,
                      " of ", e.count);
             while (!rest_.empty() && is_space(rest_.front())) rest_.remove_prefix(1);
         } while (rest_.empty());  // blank lines carry nothing

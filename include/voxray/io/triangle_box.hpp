@@ -4,7 +4,9 @@
 //   3 box face normals, the triangle normal, 9 cross products box-axis x edge.
 // Boxes are closed: a triangle that only touches a face, edge or corner overlaps.
 // That makes surface voxelization conservative (no gaps where a triangle runs
-// exactly along a voxel boundary). Double precision throughout.
+// exactly along a voxel boundary). Double precision throughout, and every
+// comparison allows a relative slack of 2^-40 of the magnitudes involved, so
+// rounding can only add a voxel that touches to within ~1e-12, never drop one.
 #pragma once
 #include <algorithm>
 #include <cmath>
@@ -14,18 +16,24 @@
 
 namespace voxray::io {
 
+// Relative slack of the comparisons (see above).
+inline constexpr double triangle_box_slack = 0x1.0p-40;
+
 // General form: box given by centre and half size.
 inline bool triangle_box_overlap(glm::dvec3 centre, glm::dvec3 half, glm::dvec3 a, glm::dvec3 b, glm::dvec3 c) {
     const glm::dvec3 v[3] = {a - centre, b - centre, c - centre};
+    glm::dvec3 mag = glm::max(glm::abs(centre), glm::max(glm::abs(a), glm::max(glm::abs(b), glm::abs(c)))) + half;
     // Box face normals: bounding-box rejection.
     for (int i = 0; i < 3; ++i) {
         double lo = std::min({v[0][i], v[1][i], v[2][i]}), hi = std::max({v[0][i], v[1][i], v[2][i]});
-        if (lo > half[i] || hi < -half[i]) return false;
+        double r = half[i] + triangle_box_slack * mag[i];
+        if (lo > r || hi < -r) return false;
     }
     const glm::dvec3 e[3] = {v[1] - v[0], v[2] - v[1], v[0] - v[2]};
     auto separated = [&](glm::dvec3 axis) {
         double p0 = glm::dot(axis, v[0]), p1 = glm::dot(axis, v[1]), p2 = glm::dot(axis, v[2]);
-        double r = glm::dot(half, glm::abs(axis));
+        glm::dvec3 aa = glm::abs(axis);
+        double r = glm::dot(half, aa) + triangle_box_slack * glm::dot(mag, aa) * 4.0;
         return std::min({p0, p1, p2}) > r || std::max({p0, p1, p2}) < -r;
     };
     for (int k = 0; k < 3; ++k) {
@@ -44,6 +52,8 @@ public:
     triangle_cell_test(glm::dvec3 a, glm::dvec3 b, glm::dvec3 c) : v_{a, b, c} {
         bmin_ = glm::min(a, glm::min(b, c));
         bmax_ = glm::max(a, glm::max(b, c));
+        // Cells near the triangle have coordinates of about the same magnitude.
+        mag_ = glm::max(glm::abs(bmin_), glm::abs(bmax_)) + 1.0;
         const glm::dvec3 e[3] = {b - a, c - b, a - c};
         normal_ = glm::cross(e[0], e[1]);
         int n = 0;
@@ -57,8 +67,10 @@ public:
 
     // Cell m covers [m, m+1] on each axis.
     bool overlaps(glm::dvec3 m) const {
-        for (int i = 0; i < 3; ++i)
-            if (m[i] > bmax_[i] || m[i] + 1.0 < bmin_[i]) return false;
+        for (int i = 0; i < 3; ++i) {
+            double slack = triangle_box_slack * mag_[i];
+            if (m[i] > bmax_[i] + slack || m[i] + 1.0 < bmin_[i] - slack) return false;
+        }
         return overlaps_planes(m);
     }
     // Skips the bounding-box axes: for callers whose cell range already comes
@@ -88,11 +100,12 @@ private:
         double p0 = glm::dot(axis, v_[0]), p1 = glm::dot(axis, v_[1]), p2 = glm::dot(axis, v_[2]);
         double pos = 0, neg = 0;
         for (int k = 0; k < 3; ++k) (axis[k] > 0 ? pos : neg) += axis[k];
-        axes_[i] = {axis, std::min({p0, p1, p2}) - pos, std::max({p0, p1, p2}) - neg};
+        double slack = triangle_box_slack * glm::dot(mag_, glm::abs(axis)) * 4.0;
+        axes_[i] = {axis, std::min({p0, p1, p2}) - pos - slack, std::max({p0, p1, p2}) - neg + slack};
     }
 
     glm::dvec3 v_[3];
-    glm::dvec3 bmin_, bmax_, normal_;
+    glm::dvec3 bmin_, bmax_, normal_, mag_;
     axis_test axes_[10];
 };
 

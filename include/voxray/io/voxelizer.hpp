@@ -98,13 +98,13 @@ inline bool cell_span(double lo, double hi, int a, int b, int& first, int& last)
 // triangle overlaps. Candidates come row by row across the plane most facing
 // the triangle (so each column holds at most ~3 candidates), and each candidate
 // gets the exact test. `slack` widens candidate ranges against rounding; it never
-// widens the exact test.
+// widens the exact test, which has its own far smaller slack.
 template <class Emit>
 void rasterize_triangle(const triangle_cell_test& tri, glm::ivec3 lo, glm::ivec3 hi, Emit&& emit) {
     constexpr double slack = 1e-7;
     glm::ivec3 first, last;
     for (int i = 0; i < 3; ++i)
-        if (!cell_span(tri.bmin()[i], tri.bmax()[i], lo[i], hi[i] - 1, first[i], last[i])) return;
+        if (!cell_span(tri.bmin()[i] - slack, tri.bmax()[i] + slack, lo[i], hi[i] - 1, first[i], last[i])) return;
     glm::dvec3 n = tri.normal(), an = glm::abs(n);
     int w = an.x >= an.y && an.x >= an.z ? 0 : (an.y >= an.z ? 1 : 2);
     int u = (w + 1) % 3, v = (w + 2) % 3;
@@ -152,7 +152,7 @@ void rasterize_triangle(const triangle_cell_test& tri, glm::ivec3 lo, glm::ivec3
             glm::ivec3 cell;
             cell[u] = cu, cell[v] = cv;
             for (cell[w] = cw0; cell[w] <= cw1; ++cell[w])
-                if (tri.overlaps_planes(glm::dvec3(cell))) emit(cell);
+                if (tri.overlaps(glm::dvec3(cell))) emit(cell);
         }
     }
 }

@@ -45,9 +45,21 @@ typedef bool vx_mask;
 #define vx_u2i(x) as_int(x)
 #define vx_f_bits(x) as_uint(x)
 #define vx_floor(x) floor(x)
-#define vx_fmin(a, b) fmin((a), (b))
-#define vx_fmax(a, b) fmax((a), (b))
 #define vx_any(m) (m)
+/* Spelled like the C++ lanes (kernels/cpu_lanes.hpp), not as OpenCL fmin/fmax: those
+ * return the other operand for a NaN (the C++ select returns the second) and leave the
+ * sign of min(+0, -0) to the device, so t could be -0 on one backend and +0 on another. */
+static inline float vx_fmin(float a, float b) { return a < b ? a : b; }
+static inline float vx_fmax(float a, float b) { return a > b ? a : b; }
+/* Words that are plain identifiers in C++ and GLSL but address-space or function
+ * qualifiers in OpenCL C (`uint local = ...` does not compile), renamed so kernel code may
+ * use them as variable names. Code after the kernels (the OpenCL entry points) spells
+ * qualifiers with underscores: __global, __kernel. Prefer other names in new kernel code. */
+#define local vx_cl_local
+#define global vx_cl_global
+#define constant vx_cl_constant
+#define private vx_cl_private
+#define kernel vx_cl_kernel
 
 #elif defined(VX_DIALECT_GLSL)
 #define VX_FN
@@ -68,9 +80,12 @@ typedef bool vx_mask;
 #define vx_u2i(x) int(x)
 #define vx_f_bits(x) floatBitsToUint(x)
 #define vx_floor(x) floor(x)
-#define vx_fmin(a, b) min((a), (b))
-#define vx_fmax(a, b) max((a), (b))
 #define vx_any(m) (m)
+/* Spelled like the C++ lanes (kernels/cpu_lanes.hpp), not as GLSL min/max: those leave
+ * the result for a NaN operand undefined and, compiled to LLVM maxnum (lavapipe), may
+ * return the other zero of (+0, -0), so t = -0 on the GPU where the CPU says +0. */
+float vx_fmin(float a, float b) { return a < b ? a : b; }
+float vx_fmax(float a, float b) { return a > b ? a : b; }
 /* Structure data, rays and hits are reached by buffer device address: no descriptor
  * range limit (lavapipe's maxStorageBufferRange is 128 MiB) applies to them. */
 layout(buffer_reference, std430, buffer_reference_align = 4) readonly buffer vx_words { uint w[]; };

@@ -1,26 +1,45 @@
-// Embree baseline 2: one user-geometry box per voxel, intersected by an exact slab test.
+// Embree baseline 2: one user-geometry box per voxel, intersected by an exact slab test
+// (voxel_slab.hpp). Matches the reference for every ray, inside starts included.
 //
-// Which voxels get a box: only those with at least one exposed face. A ray that starts
-// outside the solid enters it through an exposed face, so enclosed voxels can never be its
-// first hit; they matter only to a ray that *starts* inside one, and that case is answered
-// before tracing by one lookup of the start voxel in a sorted set (voxel_set, 9 bytes per
-// enclosed voxel) instead of a BVH leaf per voxel. A ray starting inside an exposed voxel is
-// reported by that voxel's own callback (t = tmin, face inside). Results therefore match the
-// reference for every ray, inside starts included.
+// Which voxels get a box: only those touching empty space through a face, an edge or a
+// corner (one of their 26 neighbours is empty). The first solid voxel a ray from outside
+// enters (over a non-zero length) is entered from the empty voxel the ray was in just
+// before, one of its 26 neighbours; so fully enclosed voxels can never be a first hit.
+// Faces alone are not enough: a ray through an edge or corner can enter a voxel whose 6 face
+// neighbours are solid, touching those only at a point, which Embree's culling and float
+// slab tests may or may not count.
 //
-// Per-lane data the callbacks need (the start voxel, counters, the occluder) travels in an
-// extended RTCIntersectContext, found by the ray id that trace.hpp sets to the lane index.
+// What is answered before tracing, because Embree cannot be relied on for it (measured: a
+// ray that starts on a voxel's corner and leaves it at once touches the box only at
+// t = tnear, and Embree's node culling drops such boxes):
+//  - Inside starts: one lookup of the start voxel in a sorted set of all solid voxels
+//    (voxel_set, 9 bytes a voxel, far less than a BVH leaf).
+//  - A start on a boundary plane that enters a solid voxel right there (t = tmin) through
+//    a face, edge or corner of its empty start voxel: such rays are rebased (so the plane
+//    through the start has t = 0 exactly) and tested against the up to 8 voxels touching
+//    the start point.
+//
+// Embree's culling is also inexact at tfar (trace.hpp, widen()): each lane's exact bound
+// (tmax, then the best hit so far) is kept in the context and compared by the callbacks,
+// while Embree gets a slightly wider tfar so that it still visits boxes entered exactly
+// there. That makes hits at t == tmax exact. Per-lane data (bounds, counters, the
+// occluder) travels in an extended RTCIntersectContext, found by the ray id that trace.hpp
+// sets to the lane index.
 //
 // Results:
-//  - closest_hit: the full contract. t is the slab entry (plane - o) / d in float; hits on
-//    an equal t (an edge or corner) go to the lower face id (inside first), then the lower
-//    primitive id, so the answer does not depend on Embree's traversal order. steps = the
-//    number of slab tests the ray's callbacks ran (Embree does not expose its node visits).
+//  - closest_hit: the full contract. t is the slab entry (plane - o) / d in float. Among
+//    boxes entered at an equal t (an edge or corner) the lower face id wins (inside
+//    first), then the lower primitive id. Boxes that a ray only grazes at one point may or
+//    may not be visited depending on Embree's traversal, so on such exact ties the voxel
+//    reported can change with the coherence hint (measured: 1 ray in 5000 with 20% of
+//    origins on integer coordinates). steps = slab tests run for the ray (Embree does not
+//    expose its node visits).
 //  - any_hit: status, plus the voxel that ended the search: t, voxel, face and material of
 //    *a* solid voxel on the ray within [tmin, tmax], not necessarily the first.
 //  - bytes(): Embree's allocations for this scene (BVH and geometry; measured by the
 //    device's memory monitor across the build, so builds on a shared device must not run
-//    concurrently) plus the primitive arrays (16 bytes a box) and the enclosed-voxel set.
+//    concurrently) plus the primitive array (16 bytes a box) and the voxel set (9 bytes a
+//    solid voxel).
 //  - build_seconds(): exposure classification of the model + Embree's BVH build.
 #pragma once
 #include <chrono>
@@ -49,14 +68,12 @@ public:
         auto start = std::chrono::steady_clock::now();
         bounds_ = model.bounds();
         check_limit("box_scene voxel count", model.voxel_count(), std::uint64_t(RTC_INVALID_GEOMETRY_ID) - 1);
+        solid_.reserve(model.voxel_count());
         for_each_voxel_exposure(model, [&](glm::ivec3 p, std::uint8_t material, std::uint8_t exposed) {
-            if (exposed) {
-                boxes_.push_back({p, material});
-            } else {
-                interior_.add(p, material);
-            }
-        });
-        interior_.finish();
+            if (exposed) boxes_.push_back({p, material});
+            solid_.add(p, material);
+        }, true);
+        solid_.finish();
         boxes_.shrink_to_fit();
 
         std::size_t before = dev_.allocated_bytes();
@@ -85,11 +102,11 @@ public:
         build_seconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     }
 
-    void closest_hit(std::span<const ray> rays, std::span<hit> hits, unsigned threads = 0) const {
+    void closest_hit(std::span<const ray> rays, std::span<hit> hits, const trace_options& opt = {}) const {
         check_spans(rays.size(), hits.size());
-        for_each_packet(rays.size(), threads, [&](std::size_t first, unsigned count) {
+        for_each_packet(rays.size(), opt.threads, [&](std::size_t first, unsigned count) {
             packet pk;
-            context ctx;
+            context ctx(opt);
             if (!prepare(rays.subspan(first, count), hits.subspan(first, count), pk, ctx)) return;
             rtcIntersect16(pk.valid, scene_.get(), &ctx.base, &pk.rayhit);
             for (unsigned i = 0; i < count; ++i) {
@@ -101,16 +118,17 @@ public:
                     continue;
                 }
                 const box& b = boxes_[pk.rayhit.hit.primID[i]];
-                h = make_hit(pk.t(i), b, std::uint32_t(pk.rayhit.hit.u[i]), ctx.steps[i]);
+                float t = ctx.tfar[i] + pk.shift[i] + 0.0f;  // the exact bound is the hit's t
+                h = make_hit(t, b, std::uint32_t(pk.rayhit.hit.u[i]), ctx.steps[i]);
             }
         });
     }
 
-    void any_hit(std::span<const ray> rays, std::span<hit> hits, unsigned threads = 0) const {
+    void any_hit(std::span<const ray> rays, std::span<hit> hits, const trace_options& opt = {}) const {
         check_spans(rays.size(), hits.size());
-        for_each_packet(rays.size(), threads, [&](std::size_t first, unsigned count) {
+        for_each_packet(rays.size(), opt.threads, [&](std::size_t first, unsigned count) {
             packet pk;
-            context ctx;
+            context ctx(opt);
             if (!prepare(rays.subspan(first, count), hits.subspan(first, count), pk, ctx)) return;
             rtcOccluded16(pk.valid, scene_.get(), &ctx.base, &pk.rayhit.ray);
             for (unsigned i = 0; i < count; ++i) {
@@ -127,11 +145,11 @@ public:
         });
     }
 
-    std::size_t bytes() const { return embree_bytes_ + boxes_.capacity() * sizeof(box) + interior_.bytes(); }
+    std::size_t bytes() const { return embree_bytes_ + boxes_.capacity() * sizeof(box) + solid_.bytes(); }
     std::size_t embree_bytes() const { return embree_bytes_; }
     double build_seconds() const { return build_seconds_; }
-    std::size_t box_count() const { return boxes_.size(); }          // voxels with an exposed face
-    std::size_t enclosed_count() const { return interior_.size(); }  // voxels found by lookup
+    std::size_t box_count() const { return boxes_.size(); }  // voxels touching empty space
+    std::size_t enclosed_count() const { return solid_.size() - boxes_.size(); }  // without a box
     const device& embree_device() const { return dev_; }
 
 private:
@@ -144,17 +162,17 @@ private:
     // indexed by ray id (= lane in the packet).
     struct context {
         RTCIntersectContext base;  // must stay first: callbacks cast the pointer back
-        glm::ivec3 start[packet_width];
+        float tfar[packet_width];  // exact bound: tmax, then the closest hit's t
         std::uint32_t steps[packet_width];
         // any_hit: what ended the search
         std::uint32_t prim[packet_width];
         float t[packet_width];
         std::uint32_t face[packet_width];
-        context() { rtcInitIntersectContext(&base); }
+        explicit context(const trace_options& opt) { init_context(base, opt); }
     };
 
-    // Loads a packet: contract misses and inside starts in enclosed voxels are answered here
-    // (and parked), the rest go to Embree. Returns whether any lane is left to trace.
+    // Loads a packet: contract misses and inside starts are answered here (and parked), the
+    // rest go to Embree. Returns whether any lane is left to trace.
     bool prepare(std::span<const ray> rays, std::span<hit> hits, packet& pk, context& ctx) const {
         for (unsigned i = 0; i < packet_width; ++i) {
             ctx.steps[i] = 0;
@@ -163,15 +181,56 @@ private:
             if (!traceable(r)) { hits[i] = miss_record(); pk.park(i); continue; }
             glm::vec3 p = start_point(r);
             glm::ivec3 s = voxel_at(p, bounds_);
-            if (std::uint8_t m = interior_.find(s)) {
+            if (std::uint8_t m = solid_.find(s)) {
                 hits[i] = make_hit(r.tmin, box{s, m}, VX_FACE_INSIDE, 0);
                 pk.park(i);
                 continue;
             }
-            ctx.start[i] = s;
-            pk.load(i, r, p, false);
+            bool on_plane = starts_on_plane(p, r.direction);
+            pk.load(i, r, p, on_plane);
+            ctx.tfar[i] = pk.rayhit.ray.tfar[i];
+            if (on_plane && entry_at_start(pk, i, r.tmin, hits[i])) {
+                pk.park(i);
+                continue;
+            }
+            pk.rayhit.ray.tfar[i] = widen(ctx.tfar[i]);
         }
         return pk.any_valid();
+    }
+
+    // For a rebased lane starting on a boundary plane: whether the ray enters one of the solid
+    // voxels touching its start point at once (t = 0 in Embree's frame). Ties (a start on an
+    // edge or corner) go to the lower face id, then the lower voxel key.
+    bool entry_at_start(const packet& pk, unsigned i, float tmin, hit& out) const {
+        const RTCRay16& r = pk.rayhit.ray;
+        glm::vec3 o(r.org_x[i], r.org_y[i], r.org_z[i]), d(r.dir_x[i], r.dir_y[i], r.dir_z[i]);
+        for (int a = 0; a < 3; ++a)  // far from the model: nothing to touch (and no int overflow)
+            if (!(o[a] >= float(bounds_.min[a] - 1) && o[a] <= float(bounds_.max[a]))) return false;
+        glm::ivec3 base(glm::floor(o));
+        int options[3];  // per axis: also the voxel below a plane that the ray crosses
+        for (int a = 0; a < 3; ++a) options[a] = (d[a] != 0.0f && o[a] == float(base[a])) ? 2 : 1;
+        bool found = false;
+        std::uint32_t best_rank = 0, steps = 0;
+        std::uint64_t best_key = 0;
+        for (int z = 0; z < options[2]; ++z)
+            for (int y = 0; y < options[1]; ++y)
+                for (int x = 0; x < options[0]; ++x) {
+                    glm::ivec3 v = base - glm::ivec3(x, y, z);
+                    std::uint8_t m = solid_.find(v);
+                    if (!m) continue;
+                    ++steps;
+                    voxel_entry e = enter_voxel(o, d, 0.0f, r.tfar[i], v);
+                    if (!e.hit) continue;  // the ray leaves v here
+                    std::uint32_t rank = face_rank(e.face);
+                    std::uint64_t key = voxel_set::key(v);
+                    if (found && (rank > best_rank || (rank == best_rank && key > best_key))) continue;
+                    found = true;
+                    best_rank = rank;
+                    best_key = key;
+                    out = make_hit(tmin, box{v, m}, e.face, steps);
+                }
+        if (found) out.steps = steps;
+        return found;
     }
 
     static hit make_hit(float t, const box& b, std::uint32_t face, std::uint32_t steps) {
@@ -196,13 +255,14 @@ private:
         out->upper_z = float(b.voxel.z + 1);
     }
 
-    // Reads lane i of an N-wide Embree ray and runs the slab test against voxel v.
+    // Reads lane i of an N-wide Embree ray and runs the slab test against voxel v. Inside
+    // starts never get here (prepare() answered them).
     static voxel_entry test_lane(RTCRayN* ray, unsigned N, unsigned i, glm::ivec3 v, context& ctx,
                                  unsigned lane) {
         glm::vec3 o(RTCRayN_org_x(ray, N, i), RTCRayN_org_y(ray, N, i), RTCRayN_org_z(ray, N, i));
         glm::vec3 d(RTCRayN_dir_x(ray, N, i), RTCRayN_dir_y(ray, N, i), RTCRayN_dir_z(ray, N, i));
         ++ctx.steps[lane];
-        return enter_voxel(o, d, RTCRayN_tnear(ray, N, i), RTCRayN_tfar(ray, N, i), v, ctx.start[lane] == v);
+        return enter_voxel(o, d, RTCRayN_tnear(ray, N, i), ctx.tfar[lane], v);
     }
 
     // Ties at equal t: inside first, then the lower face id, then the lower primitive id.
@@ -219,14 +279,14 @@ private:
             unsigned lane = RTCRayN_id(ray, N, i);
             voxel_entry e = test_lane(ray, N, i, b.voxel, ctx, lane);
             if (!e.hit) continue;
-            float& tfar = RTCRayN_tfar(ray, N, i);
             unsigned& geom = RTCHitN_geomID(hit, N, i);
-            if (geom != RTC_INVALID_GEOMETRY_ID && e.t == tfar) {
+            if (geom != RTC_INVALID_GEOMETRY_ID && e.t == ctx.tfar[lane]) {
                 std::uint32_t rank = face_rank(e.face), old_rank = face_rank(std::uint32_t(RTCHitN_u(hit, N, i)));
                 if (rank > old_rank || (rank == old_rank && args->primID > RTCHitN_primID(hit, N, i))) continue;
             }
             glm::vec3 n = face_normal(static_cast<voxray::face>(e.face));
-            tfar = e.t;
+            ctx.tfar[lane] = e.t;
+            RTCRayN_tfar(ray, N, i) = widen(e.t);
             RTCHitN_Ng_x(hit, N, i) = n.x;
             RTCHitN_Ng_y(hit, N, i) = n.y;
             RTCHitN_Ng_z(hit, N, i) = n.z;
@@ -257,7 +317,7 @@ private:
     device dev_;
     scene_handle scene_;
     std::vector<box> boxes_;  // primitive id -> voxel, material
-    voxel_set interior_;      // enclosed voxels, for inside starts
+    voxel_set solid_;         // every solid voxel, for inside starts
     box3i bounds_;
     std::size_t embree_bytes_ = 0;
     double build_seconds_ = 0.0;

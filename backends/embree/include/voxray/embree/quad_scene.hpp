@@ -8,19 +8,24 @@
 // contract (first voxel entered, entry face, material; t from Embree's quad test, within
 // float rounding of the exact plane crossing).
 //
-// Two degenerate cases would otherwise differ from the reference DDA:
-//  - A ray that starts exactly on a voxel boundary plane: Embree accepts a hit at t = tnear
-//    on both sides of the plane, so a ray leaving a solid voxel's face would hit that face
-//    from behind.
-//  - A ray running exactly along a plane x = k (zero x direction): the reference puts it in
-//    voxel column k (voxel x covers [x, x+1)), but Embree's watertight test also hits the
-//    quads of column k-1, whose edge lies on the ray.
-// Both need a start point with an integer coordinate, so only packets holding such a ray
-// pay for a fix: those lanes are rebased to start at tnear 0 (so a plane through the start
-// has t = 0 exactly), and the packet is traced with a context filter that rejects back-face
-// hits (a ray from outside solid can only enter a voxel through a front face) and hits on a
-// voxel whose half-open extent does not contain the ray's coordinate along a zero-direction
-// axis. Other packets run unfiltered.
+// Degenerate cases that would otherwise differ from the reference DDA:
+//  - A ray running exactly along a plane x = k (zero x direction) belongs to voxel column k
+//    (voxel x covers [x, x+1)), but Embree's watertight test would also hit the quads of
+//    column k-1 on their edge. trace.hpp moves such an origin to the middle of column k.
+//  - Back-face hits. A ray from outside solid enters voxels through front faces only, but
+//    Embree also reports back faces: a ray that starts on a solid voxel's face and leaves it
+//    hits that face at t = tnear, and a ray through an edge or corner may hit the face it
+//    leaves by at the same t as one it enters by. A context filter that rejects back faces
+//    fixes both, but costs about 20% when always on (measured on coherent rays), so:
+//    - closest_hit traces unfiltered, then retraces with the filter only the lanes whose
+//      hit is a back face (rare: starts on a surface, rays through edges);
+//    - any_hit, which cannot see which face stopped it, traces with the filter every packet
+//      holding a ray that starts on a boundary plane (shadow rays leaving a surface).
+//    Rays starting on a boundary plane they cross are also rebased to start at tnear 0, so
+//    that plane's t is exactly 0 and a front face there is not lost to rounding below tnear.
+//  - A hit exactly at tmax: closest_hit gives Embree a slightly wider tfar (widen()) and
+//    discards hits beyond the exact one. any_hit does not (a shadow ray touching an occluder
+//    exactly at tmax may count either way).
 //
 // Results:
 //  - closest_hit: status, t (+ rounding), voxel, face, material; steps = 0.
@@ -60,7 +65,8 @@ public:
                 if (exposed & (1u << f)) faces_.push_back({p, f | (std::uint32_t(material) << 8)});
         });
         faces_.shrink_to_fit();
-        check_limit("quad_scene face count", faces_.size(), std::size_t(RTC_INVALID_GEOMETRY_ID) - 1);
+        // Vertex indices are 32-bit and each quad has 4 vertices of its own.
+        check_limit("quad_scene face count", faces_.size(), std::size_t(1) << 30);
 
         std::size_t before = dev_.allocated_bytes();
         scene_.reset(rtcNewScene(dev_.handle()));
@@ -76,17 +82,25 @@ public:
         build_seconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     }
 
-    void closest_hit(std::span<const ray> rays, std::span<hit> hits, unsigned threads = 0) const {
+    void closest_hit(std::span<const ray> rays, std::span<hit> hits, const trace_options& opt = {}) const {
         check_spans(rays.size(), hits.size());
-        for_each_packet(rays.size(), threads, [&](std::size_t first, unsigned count) {
+        for_each_packet(rays.size(), opt.threads, [&](std::size_t first, unsigned count) {
             packet pk;
-            context ctx(faces_.data());
-            if (!prepare(rays.subspan(first, count), hits.subspan(first, count), pk, ctx)) return;
+            context ctx(faces_.data(), opt);
+            if (!prepare(rays.subspan(first, count), hits.subspan(first, count), pk)) return;
+            float tfar[packet_width];
+            for (unsigned i = 0; i < packet_width; ++i) {
+                tfar[i] = pk.rayhit.ray.tfar[i];
+                pk.rayhit.ray.tfar[i] = widen(tfar[i]);
+            }
             rtcIntersect16(pk.valid, scene_.get(), &ctx.base, &pk.rayhit);
+            retrace_back_faces(pk, ctx, tfar);
             for (unsigned i = 0; i < count; ++i) {
                 if (!pk.valid[i]) continue;
                 hit& h = hits[first + i];
-                if (pk.rayhit.hit.geomID[i] == RTC_INVALID_GEOMETRY_ID) {
+                // Embree finds the closest hit within the widened bound, so if even that one
+                // lies beyond the exact bound, nothing lies within it.
+                if (pk.rayhit.hit.geomID[i] == RTC_INVALID_GEOMETRY_ID || pk.rayhit.ray.tfar[i] > tfar[i]) {
                     h = miss_record();
                     continue;
                 }
@@ -101,12 +115,13 @@ public:
         });
     }
 
-    void any_hit(std::span<const ray> rays, std::span<hit> hits, unsigned threads = 0) const {
+    void any_hit(std::span<const ray> rays, std::span<hit> hits, const trace_options& opt = {}) const {
         check_spans(rays.size(), hits.size());
-        for_each_packet(rays.size(), threads, [&](std::size_t first, unsigned count) {
+        for_each_packet(rays.size(), opt.threads, [&](std::size_t first, unsigned count) {
             packet pk;
-            context ctx(faces_.data());
-            if (!prepare(rays.subspan(first, count), hits.subspan(first, count), pk, ctx)) return;
+            context ctx(faces_.data(), opt);
+            if (!prepare(rays.subspan(first, count), hits.subspan(first, count), pk)) return;
+            if (pk.boundary) ctx.base.filter = &front_face_filter;
             rtcOccluded16(pk.valid, scene_.get(), &ctx.base, &pk.rayhit.ray);
             for (unsigned i = 0; i < count; ++i) {
                 if (!pk.valid[i]) continue;
@@ -136,7 +151,7 @@ private:
     struct context {
         RTCIntersectContext base;  // must stay first: the filter casts the pointer back
         const face_record* faces;
-        explicit context(const face_record* f) : faces(f) { rtcInitIntersectContext(&base); }
+        context(const face_record* f, const trace_options& opt) : faces(f) { init_context(base, opt); }
     };
 
     void attach_quads() {
@@ -173,41 +188,64 @@ private:
         dev_.check("quad geometry setup");
     }
 
-    // Loads a packet; lanes starting on a boundary plane are rebased and switch the packet's
-    // filter on. Returns whether any lane is left to trace.
-    bool prepare(std::span<const ray> rays, std::span<hit> hits, packet& pk, context& ctx) const {
-        bool boundary = false;
+    // Loads a packet; lanes starting on a boundary plane are rebased. Returns whether any
+    // lane is left to trace.
+    bool prepare(std::span<const ray> rays, std::span<hit> hits, packet& pk) const {
+        pk.boundary = false;
         for (unsigned i = 0; i < packet_width; ++i) {
             if (i >= rays.size()) { pk.park(i); continue; }
             const ray& r = rays[i];
             if (!traceable(r)) { hits[i] = miss_record(); pk.park(i); continue; }
             glm::vec3 p = start_point(r);
-            bool on_plane = on_boundary(p);
-            boundary |= on_plane;
+            bool on_plane = starts_on_plane(p, r.direction);
+            pk.boundary |= on_plane;
             pk.load(i, r, p, on_plane);
         }
-        if (boundary) ctx.base.filter = &boundary_filter;
         return pk.any_valid();
     }
 
-    static void boundary_filter(const RTCFilterFunctionNArguments* args) {
+    // Front face: the ray moves against the face's outward normal (a +x face is entered
+    // moving -x). d_axis is the ray's direction along the face's axis.
+    static bool front_facing(const face_record& f, float d_axis) {
+        return (f.face_material & 1u) ? d_axis > 0.0f : d_axis < 0.0f;
+    }
+    static float direction_on_axis(const RTCRay16& r, unsigned i, const face_record& f) {
+        int a = int(f.face_material & 0xFFu) >> 1;
+        return a == 0 ? r.dir_x[i] : a == 1 ? r.dir_y[i] : r.dir_z[i];
+    }
+
+    // Traces again, with the front-face filter, the lanes whose closest hit is a back face.
+    // tfar: the exact bounds (Embree gets them widened again).
+    void retrace_back_faces(packet& pk, context& ctx, const float* tfar) const {
+        alignas(64) int again[packet_width];
+        bool any = false;
+        for (unsigned i = 0; i < packet_width; ++i) {
+            again[i] = 0;
+            if (!pk.valid[i] || pk.rayhit.hit.geomID[i] == RTC_INVALID_GEOMETRY_ID) continue;
+            const face_record& f = faces_[pk.rayhit.hit.primID[i]];
+            if (front_facing(f, direction_on_axis(pk.rayhit.ray, i, f))) continue;
+            again[i] = -1;
+            any = true;
+            pk.rayhit.ray.tfar[i] = widen(tfar[i]);
+            pk.rayhit.hit.geomID[i] = RTC_INVALID_GEOMETRY_ID;
+        }
+        if (!any) return;
+        ctx.base.filter = &front_face_filter;
+        rtcIntersect16(again, scene_.get(), &ctx.base, &pk.rayhit);
+        ctx.base.filter = nullptr;
+    }
+
+    static void front_face_filter(const RTCFilterFunctionNArguments* args) {
         const auto& ctx = *reinterpret_cast<const context*>(args->context);
         const unsigned N = args->N;
         for (unsigned i = 0; i < N; ++i) {
             if (!args->valid[i]) continue;
             const face_record& f = ctx.faces[RTCHitN_primID(args->hit, N, i)];
-            int face = int(f.face_material & 0xFFu), a = face >> 1;
-            float o[3] = {RTCRayN_org_x(args->ray, N, i), RTCRayN_org_y(args->ray, N, i), RTCRayN_org_z(args->ray, N, i)};
-            float d[3] = {RTCRayN_dir_x(args->ray, N, i), RTCRayN_dir_y(args->ray, N, i), RTCRayN_dir_z(args->ray, N, i)};
-            // Front face: moving against the outward normal (+a face entered moving -a).
-            bool front = (face & 1) ? d[a] > 0.0f : d[a] < 0.0f;
-            bool in_columns = true;
-            for (int b = 0; b < 3; ++b)
-                if (b != a && d[b] == 0.0f) {
-                    float lo = float(f.voxel[b]);
-                    in_columns &= o[b] >= lo && o[b] < lo + 1.0f;
-                }
-            if (!front || !in_columns) args->valid[i] = 0;
+            int a = int(f.face_material & 0xFFu) >> 1;
+            float d = a == 0 ? RTCRayN_dir_x(args->ray, N, i)
+                    : a == 1 ? RTCRayN_dir_y(args->ray, N, i)
+                             : RTCRayN_dir_z(args->ray, N, i);
+            if (!front_facing(f, d)) args->valid[i] = 0;
         }
     }
 

@@ -8,6 +8,8 @@
 //    tfar tmax - tmin, and tmin is added back to the hit t. The scenes also rebase rays
 //    whose start point lies on a voxel boundary (see quad_scene.hpp).
 //  - rtcIntersect16 needs its valid mask and packet 64-byte aligned.
+//  - Embree's traversal is not exact at the edges of the interval or along planes; see
+//    widen() and the nudge in packet::load for what the scenes do about it.
 #pragma once
 #include <algorithm>
 #include <atomic>
@@ -32,6 +34,21 @@
 namespace voxray::embree {
 
 inline constexpr unsigned packet_width = 16;
+
+// How closest_hit / any_hit run.
+struct trace_options {
+    unsigned threads = 0;  // 0: all cores (std::thread::hardware_concurrency())
+    // Embree's coherence hint. Coherent (camera rays, rays in tiles) lets Embree keep whole
+    // packets together: about 3x faster on primary rays here (measured: quads 4.5 -> 13
+    // Mrays/s, one thread). Set false for scattered rays (diffuse bounces).
+    bool coherent = true;
+};
+
+// An intersect context with the coherence hint of `opt`.
+inline void init_context(RTCIntersectContext& c, const trace_options& opt) {
+    rtcInitIntersectContext(&c);
+    c.flags = opt.coherent ? RTC_INTERSECT_CONTEXT_FLAG_COHERENT : RTC_INTERSECT_CONTEXT_FLAG_INCOHERENT;
+}
 
 inline bool finite3(glm::vec3 v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
 
@@ -62,16 +79,26 @@ inline glm::ivec3 voxel_at(glm::vec3 p, const box3i& bounds) {
     return {int(std::floor(p.x)), int(std::floor(p.y)), int(std::floor(p.z))};
 }
 
-// Whether some coordinate of p is an integer: the ray starts on a voxel boundary plane.
-inline bool on_boundary(glm::vec3 p) {
-    return p.x == std::floor(p.x) || p.y == std::floor(p.y) || p.z == std::floor(p.z);
+// Whether the ray starts on a voxel boundary plane that it crosses: some coordinate of the
+// start point p is an integer on an axis where the direction d is not zero.
+inline bool starts_on_plane(glm::vec3 p, glm::vec3 d) {
+    for (int a = 0; a < 3; ++a)
+        if (d[a] != 0.0f && p[a] == std::floor(p[a])) return true;
+    return false;
 }
+
+// A bound a little above t, for Embree's tfar. Embree's node culling computes box entries
+// with an approximate reciprocal and drops a box entered exactly at tfar (measured: a hit
+// at t == tmax is lost). The scenes give Embree this widened bound and keep the exact one
+// themselves (box callbacks compare against it; quad hits beyond it are discarded).
+inline float widen(float t) { return t + std::abs(t) * 0x1p-16f + 0x1p-100f; }
 
 // One 16-ray packet as Embree wants it, plus per-lane bookkeeping.
 struct packet {
     alignas(64) int valid[packet_width];
     alignas(64) RTCRayHit16 rayhit;
     float shift[packet_width];  // tmin added back to Embree's t for rebased lanes, else 0
+    bool boundary = false;      // set by a scene when some lane starts on a boundary plane
 
     // Loads r into lane i; `rebase` moves the origin to `start` (= start_point(r)) and
     // traces from tnear 0. Rays with tmin < 0 are always rebased. Both Embree geometry
@@ -81,6 +108,15 @@ struct packet {
         glm::vec3 o = rebase ? start : r.origin;
         // +0.0f turns -0 into +0, so "which side of a plane" never depends on a zero's sign.
         glm::vec3 d = r.direction + 0.0f;
+        // Along an axis with zero direction the ray never leaves its row of voxels, and where
+        // in the row it runs changes neither which voxels it meets nor any t. So move it to
+        // the middle of its row (voxel y covers [y, y+1)). Measured reasons: with o on a
+        // boundary plane, Embree's node test computes (plane - o) * (1 / 0) = NaN and culls
+        // the boxes of the ray's own row; and its watertight quad test hits the faces of the
+        // row below on their edge, even with o moved up by one ulp. Beyond 2^22 floats are
+        // too coarse for this, but no voxel lies there (coordinates stay below 2^20).
+        for (int a = 0; a < 3; ++a)
+            if (d[a] == 0.0f && std::abs(o[a]) < 0x1p22f) o[a] = std::floor(o[a]) + 0.5f;
         RTCRay16& p = rayhit.ray;
         p.org_x[i] = o.x; p.org_y[i] = o.y; p.org_z[i] = o.z;
         p.dir_x[i] = d.x; p.dir_y[i] = d.y; p.dir_z[i] = d.z;

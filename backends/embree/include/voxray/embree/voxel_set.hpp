@@ -1,11 +1,10 @@
 // A compact, read-only set of voxels with their materials: sorted 63-bit packed keys and a
 // parallel byte array, 9 bytes a voxel, binary search to find one.
 //
-// The box scene keeps the voxels that have no exposed face here instead of in Embree's BVH.
-// Such a voxel can only be "hit" by a ray that starts inside it, and that takes one lookup
-// per ray before tracing, so paying a BVH leaf (tens of bytes) for each would be a waste.
-// A sorted array beats a hash set here: no load factor, no pointers, and one lookup per
-// ray of O(log n) is small next to a BVH traversal.
+// The box scene answers inside starts with one lookup of the start voxel here before
+// tracing, so enclosed voxels need no BVH leaf (tens of bytes each) at all. A sorted array
+// beats a hash set for this: no load factor, no pointers, and one O(log n) lookup per ray is
+// small next to a BVH traversal.
 #pragma once
 #include <algorithm>
 #include <cstddef>

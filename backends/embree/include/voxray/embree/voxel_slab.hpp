@@ -2,8 +2,8 @@
 // meets voxel v = [v, v+1)^3 within [tnear, tfar], and through which face.
 //
 // Rules, chosen to agree with the reference DDA:
-//  - The ray's start point is classified by the caller (floor of the start point, computed
-//    once per ray): if it lies in v, the answer is t = tnear, face inside.
+//  - Inside starts are the caller's business (the box scene looks the start voxel up before
+//    tracing); this test only answers "where does the ray enter v".
 //  - An axis with zero direction never enters or leaves the slab: the ray is in it when its
 //    origin coordinate o lies in [v, v+1), half-open like the voxel. A ray running exactly
 //    along the plane x = v+1 therefore belongs to the next voxel, as in the DDA.
@@ -29,10 +29,8 @@ struct voxel_entry {
 };
 
 // o, d: the ray as Embree traces it; tnear/tfar: its current interval (tfar shrinks as
-// closer hits are found). start_inside: the caller found the start point in v.
-inline voxel_entry enter_voxel(glm::vec3 o, glm::vec3 d, float tnear, float tfar, glm::ivec3 v,
-                               bool start_inside) {
-    if (start_inside) return {true, tnear, VX_FACE_INSIDE};
+// closer hits are found).
+inline voxel_entry enter_voxel(glm::vec3 o, glm::vec3 d, float tnear, float tfar, glm::ivec3 v) {
     float t0 = -std::numeric_limits<float>::infinity();  // latest entry over the axes
     float t1 = std::numeric_limits<float>::infinity();   // earliest exit
     std::uint32_t face = VX_FACE_NONE;

@@ -119,7 +119,7 @@ inline device_choice select_device(const opencl_options& options) {
     if (!options.device.empty()) wanted += " device matching '" + options.device + "'";
     bool none_at_all = std::all_of(found.begin(), found.end(), [](auto& f) { return f.second.empty(); });
     throw opencl_error("OpenCL: no available" + (wanted.empty() ? std::string(" device") : wanted) +
-                           "; found " + std::to_string(platform_count) + " platform(s) with devices " +
+                           "; found " + std::to_string(platform_count) + " platform(s), with their devices: " +
                            describe(found) + (none_at_all ? zero_devices_hint : ""),
                        CL_DEVICE_NOT_FOUND);
 }

@@ -44,6 +44,16 @@ inline void vk_check(VkResult r, const char* call) {
     if (r != VK_SUCCESS) fail("vulkan: ", call, " failed: ", result_name(r), " (", int(r), ")");
 }
 
+// A zeroed Vulkan struct with its sType (and pNext) set: `T x{sType}` would leave the
+// other members value-initialized too, but -Wextra warns about it in users' builds.
+template <class T>
+T vk_struct(VkStructureType type, void* next = nullptr) {
+    T s{};
+    s.sType = type;
+    s.pNext = next;
+    return s;
+}
+
 // Packed Vulkan version as "major.minor.patch".
 inline std::string version_string(std::uint32_t v) {
     return std::to_string(VK_API_VERSION_MAJOR(v)) + "." + std::to_string(VK_API_VERSION_MINOR(v)) + "." +

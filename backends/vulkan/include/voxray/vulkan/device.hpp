@@ -1,0 +1,249 @@
+// The Vulkan instance, the chosen physical device, its logical device and one compute
+// queue. Everything else in the backend borrows these handles from one `context`.
+//
+// Needs Vulkan 1.2 for buffer device addresses: the shaders reach structure, rays and
+// hits through 64-bit addresses in push constants, so no descriptor and therefore no
+// maxStorageBufferRange (128 MiB on lavapipe) limits a structure's size.
+#pragma once
+#include <algorithm>
+#include <cstdint>
+#include <cstdlib>
+#include <cstring>
+#include <string>
+#include <vector>
+
+#include <vulkan/vulkan.h>
+
+#include "voxray/vulkan/check.hpp"
+#include "voxray/vulkan/options.hpp"
+
+namespace voxray::vulkan_detail {
+
+inline constexpr std::uint32_t required_api = VK_API_VERSION_1_2;
+
+inline bool has_extension(const std::vector<VkExtensionProperties>& list, const char* name) {
+    return std::any_of(list.begin(), list.end(),
+                       [&](const VkExtensionProperties& e) { return std::strcmp(e.extensionName, name) == 0; });
+}
+
+inline std::vector<VkExtensionProperties> device_extensions(VkPhysicalDevice pd) {
+    std::uint32_t n = 0;
+    vk_check(vkEnumerateDeviceExtensionProperties(pd, nullptr, &n, nullptr), "vkEnumerateDeviceExtensionProperties");
+    std::vector<VkExtensionProperties> list(n);
+    vk_check(vkEnumerateDeviceExtensionProperties(pd, nullptr, &n, list.data()), "vkEnumerateDeviceExtensionProperties");
+    list.resize(n);
+    return list;
+}
+
+// Lower is better: a real GPU first, a CPU implementation (lavapipe) last.
+inline int type_rank(VkPhysicalDeviceType t) {
+    switch (t) {
+    case VK_PHYSICAL_DEVICE_TYPE_DISCRETE_GPU: return 0;
+    case VK_PHYSICAL_DEVICE_TYPE_INTEGRATED_GPU: return 1;
+    case VK_PHYSICAL_DEVICE_TYPE_VIRTUAL_GPU: return 2;
+    case VK_PHYSICAL_DEVICE_TYPE_CPU: return 3;
+    default: return 4;
+    }
+}
+
+// One physical device as seen during selection; `problem` is empty when it is usable.
+struct candidate {
+    VkPhysicalDevice handle = VK_NULL_HANDLE;
+    VkPhysicalDeviceProperties properties{};
+    std::uint32_t queue_family = 0;
+    bool portability_subset = false;
+    std::string problem;
+};
+
+inline candidate inspect(VkPhysicalDevice pd) {
+    candidate c;
+    c.handle = pd;
+    vkGetPhysicalDeviceProperties(pd, &c.properties);
+    if (c.properties.apiVersion < required_api) {
+        c.problem = "supports Vulkan " + version_string(c.properties.apiVersion) + ", needs 1.2";
+        return c;
+    }
+    auto v12 = vk_struct<VkPhysicalDeviceVulkan12Features>(VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES);
+    auto features = vk_struct<VkPhysicalDeviceFeatures2>(VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2, &v12);
+    vkGetPhysicalDeviceFeatures2(pd, &features);
+    if (!v12.bufferDeviceAddress) {
+        c.problem = "lacks the bufferDeviceAddress feature";
+        return c;
+    }
+    std::uint32_t n = 0;
+    vkGetPhysicalDeviceQueueFamilyProperties(pd, &n, nullptr);
+    std::vector<VkQueueFamilyProperties> families(n);
+    vkGetPhysicalDeviceQueueFamilyProperties(pd, &n, families.data());
+    auto compute = std::find_if(families.begin(), families.end(), [](const VkQueueFamilyProperties& f) {
+        return (f.queueFlags & VK_QUEUE_COMPUTE_BIT) && f.queueCount > 0;
+    });
+    if (compute == families.end()) {
+        c.problem = "has no compute queue";
+        return c;
+    }
+    c.queue_family = std::uint32_t(compute - families.begin());
+    // The spec requires enabling VK_KHR_portability_subset where it exists (MoltenVK).
+    c.portability_subset = has_extension(device_extensions(pd), "VK_KHR_portability_subset");
+    return c;
+}
+
+class context {
+public:
+    explicit context(const vulkan_options& options) {
+        try {
+            create_instance();
+            choose_device(options);
+            create_device();
+        } catch (...) {
+            destroy();
+            throw;
+        }
+    }
+    ~context() { destroy(); }
+    context(const context&) = delete;
+    context& operator=(const context&) = delete;
+
+    VkDevice device() const { return device_; }
+    VkPhysicalDevice physical_device() const { return chosen_.handle; }
+    VkQueue queue() const { return queue_; }
+    std::uint32_t queue_family() const { return chosen_.queue_family; }
+    const VkPhysicalDeviceProperties& properties() const { return chosen_.properties; }
+    const VkPhysicalDeviceMemoryProperties& memory() const { return memory_; }
+    std::string name() const { return chosen_.properties.deviceName; }
+    // Largest single allocation and buffer the device allows (maintenance3 / maintenance4).
+    VkDeviceSize max_allocation() const { return max_allocation_; }
+    VkDeviceSize max_buffer() const { return max_buffer_; }
+
+private:
+    void create_instance() {
+        // vkEnumerateInstanceVersion is missing from 1.0 loaders, which cannot do 1.2 anyway.
+        auto enumerate_version = reinterpret_cast<PFN_vkEnumerateInstanceVersion>(
+            vkGetInstanceProcAddr(nullptr, "vkEnumerateInstanceVersion"));
+        std::uint32_t loader = VK_API_VERSION_1_0;
+        if (enumerate_version) vk_check(enumerate_version(&loader), "vkEnumerateInstanceVersion");
+        if (loader < required_api)
+            fail("vulkan: the Vulkan loader supports API ", version_string(loader), ", voxray needs 1.2");
+
+        std::uint32_t n = 0;
+        vk_check(vkEnumerateInstanceExtensionProperties(nullptr, &n, nullptr), "vkEnumerateInstanceExtensionProperties");
+        std::vector<VkExtensionProperties> available(n);
+        vk_check(vkEnumerateInstanceExtensionProperties(nullptr, &n, available.data()),
+                 "vkEnumerateInstanceExtensionProperties");
+        available.resize(n);
+
+        auto app = vk_struct<VkApplicationInfo>(VK_STRUCTURE_TYPE_APPLICATION_INFO);
+        app.pApplicationName = "voxray";
+        app.pEngineName = "voxray";
+        app.apiVersion = required_api;
+        auto info = vk_struct<VkInstanceCreateInfo>(VK_STRUCTURE_TYPE_INSTANCE_CREATE_INFO);
+        info.pApplicationInfo = &app;
+#ifdef VK_KHR_portability_enumeration
+        // Lists portability drivers (MoltenVK) too; without it they are hidden.
+        const char* portability = VK_KHR_PORTABILITY_ENUMERATION_EXTENSION_NAME;
+        if (has_extension(available, portability)) {
+            info.flags |= VK_INSTANCE_CREATE_ENUMERATE_PORTABILITY_BIT_KHR;
+            info.enabledExtensionCount = 1;
+            info.ppEnabledExtensionNames = &portability;
+        }
+#endif
+        vk_check(vkCreateInstance(&info, nullptr, &instance_), "vkCreateInstance");
+    }
+
+    void choose_device(const vulkan_options& options) {
+        std::uint32_t n = 0;
+        vk_check(vkEnumeratePhysicalDevices(instance_, &n, nullptr), "vkEnumeratePhysicalDevices");
+        std::vector<VkPhysicalDevice> devices(n);
+        vk_check(vkEnumeratePhysicalDevices(instance_, &n, devices.data()), "vkEnumeratePhysicalDevices");
+        devices.resize(n);
+        if (devices.empty())
+            fail("vulkan: no Vulkan device found: install a driver (for a CPU device, Mesa's lavapipe: "
+                 "Debian package mesa-vulkan-drivers)");
+
+        std::string wanted = options.device, source = "vulkan_options::device";
+        if (wanted.empty()) {
+            if (const char* env = std::getenv("VOXRAY_VULKAN_DEVICE"); env && *env) {
+                wanted = env;
+                source = "VOXRAY_VULKAN_DEVICE";
+            }
+        }
+        std::vector<candidate> all;
+        for (VkPhysicalDevice pd : devices) all.push_back(inspect(pd));
+
+        const candidate* best = nullptr;
+        std::string seen;
+        for (const candidate& c : all) {
+            std::string name = c.properties.deviceName;
+            seen += "\n  " + name + (c.problem.empty() ? "" : " (" + c.problem + ")");
+            if (!wanted.empty() && name.find(wanted) == std::string::npos) continue;
+            if (!c.problem.empty()) continue;
+            if (!best || type_rank(c.properties.deviceType) < type_rank(best->properties.deviceType)) best = &c;
+        }
+        if (!best) {
+            if (!wanted.empty())
+                fail("vulkan: no usable device whose name contains \"", wanted, "\" (from ", source, "); devices:", seen);
+            fail("vulkan: no usable device (voxray needs Vulkan 1.2 with bufferDeviceAddress and a compute queue); "
+                 "devices:", seen);
+        }
+        chosen_ = *best;
+        vkGetPhysicalDeviceMemoryProperties(chosen_.handle, &memory_);
+        read_limits();
+    }
+
+    void read_limits() {
+        auto m3 = vk_struct<VkPhysicalDeviceMaintenance3Properties>(VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_MAINTENANCE_3_PROPERTIES);
+        auto props = vk_struct<VkPhysicalDeviceProperties2>(VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2, &m3);
+#ifdef VK_VERSION_1_3
+        // maxBufferSize exists only with maintenance4 (core in 1.3); chaining the struct
+        // on a device without it would be invalid.
+        auto m4 = vk_struct<VkPhysicalDeviceMaintenance4Properties>(VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_MAINTENANCE_4_PROPERTIES);
+        bool has_m4 = chosen_.properties.apiVersion >= VK_API_VERSION_1_3 ||
+                      has_extension(device_extensions(chosen_.handle), "VK_KHR_maintenance4");
+        if (has_m4) m3.pNext = &m4;
+#endif
+        vkGetPhysicalDeviceProperties2(chosen_.handle, &props);
+        max_allocation_ = m3.maxMemoryAllocationSize;
+        max_buffer_ = max_allocation_;
+#ifdef VK_VERSION_1_3
+        if (has_m4) max_buffer_ = m4.maxBufferSize;
+#endif
+    }
+
+    void create_device() {
+        float priority = 1.0f;
+        auto queue = vk_struct<VkDeviceQueueCreateInfo>(VK_STRUCTURE_TYPE_DEVICE_QUEUE_CREATE_INFO);
+        queue.queueFamilyIndex = chosen_.queue_family;
+        queue.queueCount = 1;
+        queue.pQueuePriorities = &priority;
+        // Buffer device addresses are the only optional feature the shaders use: their
+        // addresses travel as uvec2, so shaderInt64 is not needed.
+        auto v12 = vk_struct<VkPhysicalDeviceVulkan12Features>(VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES);
+        v12.bufferDeviceAddress = VK_TRUE;
+        auto info = vk_struct<VkDeviceCreateInfo>(VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO, &v12);
+        info.queueCreateInfoCount = 1;
+        info.pQueueCreateInfos = &queue;
+        const char* portability = "VK_KHR_portability_subset";
+        if (chosen_.portability_subset) {
+            info.enabledExtensionCount = 1;
+            info.ppEnabledExtensionNames = &portability;
+        }
+        vk_check(vkCreateDevice(chosen_.handle, &info, nullptr, &device_), "vkCreateDevice");
+        vkGetDeviceQueue(device_, chosen_.queue_family, 0, &queue_);
+    }
+
+    void destroy() {
+        if (device_) vkDestroyDevice(device_, nullptr);
+        if (instance_) vkDestroyInstance(instance_, nullptr);
+        device_ = VK_NULL_HANDLE;
+        instance_ = VK_NULL_HANDLE;
+    }
+
+    VkInstance instance_ = VK_NULL_HANDLE;
+    VkDevice device_ = VK_NULL_HANDLE;
+    VkQueue queue_ = VK_NULL_HANDLE;
+    candidate chosen_;
+    VkPhysicalDeviceMemoryProperties memory_{};
+    VkDeviceSize max_allocation_ = 0;
+    VkDeviceSize max_buffer_ = 0;
+};
+
+}  // namespace voxray::vulkan_detail

@@ -1,0 +1,186 @@
+// The Vulkan engine for one structure kernel: tracer<vulkan, Structure> holds one.
+//
+//   upload(blob)  structure words into a device buffer (grow-only; direct or staged)
+//   trace(...)    per batch slice: rays in, one dispatch of ceil(n / 64) groups, hits out
+//
+// Synchronous: trace returns when the hits are in the caller's span. Not thread-safe;
+// use one engine per thread.
+#pragma once
+#include <algorithm>
+#include <bit>
+#include <chrono>
+#include <cstdint>
+#include <cstring>
+#include <memory>
+#include <span>
+#include <string>
+#include <type_traits>
+#include <utility>
+
+#include <vulkan/vulkan.h>
+
+#include "voxray/core/hit.hpp"
+#include "voxray/core/ray.hpp"
+#include "voxray/generated/vulkan_modules.hpp"
+#include "voxray/vulkan/buffer.hpp"
+#include "voxray/vulkan/commands.hpp"
+#include "voxray/vulkan/device.hpp"
+#include "voxray/vulkan/options.hpp"
+#include "voxray/vulkan/pipeline.hpp"
+
+namespace voxray::vulkan_detail {
+
+// Rays copied, traced and read back per submission: bounds the ray and hit buffers to
+// 64 MiB each and one dispatch to 32768 groups (every device allows 65535).
+inline constexpr std::size_t max_slice_rays = std::size_t(1) << 21;
+// Structure bytes copied per submission when the blob goes through a staging buffer.
+inline constexpr VkDeviceSize staging_chunk_bytes = VkDeviceSize(64) << 20;
+
+static_assert(std::is_trivially_copyable_v<ray> && std::is_trivially_copyable_v<hit>,
+              "rays and hits are copied to and from device memory as bytes");
+
+template <class Kernel>
+class engine {
+public:
+    explicit engine(vulkan_options options)
+        : options_(std::move(options)),
+          ctx_(std::make_unique<context>(options_)),
+          commands_(std::make_unique<command_stream>(*ctx_)) {
+        auto start = std::chrono::steady_clock::now();
+        pipeline_ = std::make_unique<compute_pipeline>(*ctx_, spirv_module<Kernel>::code);
+        pipeline_seconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        auto groups = std::size_t(ctx_->properties().limits.maxComputeWorkGroupCount[0]);
+        slice_ = std::min({max_slice_rays, groups * group_size, std::size_t(ctx_->max_buffer() / sizeof(ray)),
+                           std::size_t(ctx_->max_allocation() / sizeof(ray))});
+    }
+
+    engine(engine&&) noexcept = default;
+    // Swaps, so that `o` later destroys the old resources in the right order (buffers
+    // before the device they belong to); a member-wise move would free the context first.
+    engine& operator=(engine&& o) noexcept {
+        std::swap(options_, o.options_);
+        std::swap(ctx_, o.ctx_);
+        std::swap(commands_, o.commands_);
+        std::swap(pipeline_, o.pipeline_);
+        std::swap(blob_, o.blob_);
+        std::swap(rays_, o.rays_);
+        std::swap(hits_, o.hits_);
+        std::swap(rays_staging_, o.rays_staging_);
+        std::swap(hits_staging_, o.hits_staging_);
+        std::swap(slice_, o.slice_);
+        std::swap(pipeline_seconds_, o.pipeline_seconds_);
+        return *this;
+    }
+
+    void upload(std::span<const std::uint32_t> blob) {
+        // Vulkan has no empty buffers; a structure blob always has a header anyway.
+        VkDeviceSize bytes = std::max<VkDeviceSize>(blob.size_bytes(), 4);
+        if (blob_.size() < bytes) {
+            blob_ = buffer();  // free the old one first: both may not fit at once
+            blob_ = buffer(*ctx_, bytes, buffer_role::storage_upload, !options_.force_staging, "structure blob");
+        }
+        if (blob_.mapped()) {
+            std::memcpy(blob_.mapped(), blob.data(), blob.size_bytes());
+            return;  // host writes before vkQueueSubmit are visible to the device
+        }
+        // Staged: a bounded staging buffer, refilled and copied chunk by chunk.
+        VkDeviceSize chunk = std::min(staging_chunk_bytes, bytes);
+        buffer staging(*ctx_, chunk, buffer_role::staging_upload, true, "structure staging buffer");
+        auto* source = reinterpret_cast<const unsigned char*>(blob.data());
+        for (VkDeviceSize done = 0; done < blob.size_bytes(); done += chunk) {
+            VkDeviceSize n = std::min<VkDeviceSize>(chunk, blob.size_bytes() - done);
+            std::memcpy(staging.mapped(), source + done, n);
+            VkCommandBuffer cmd = commands_->begin();
+            VkBufferCopy region{0, done, n};
+            vkCmdCopyBuffer(cmd, staging.handle(), blob_.handle(), 1, &region);
+            // Later submissions' shaders read what the copy wrote.
+            command_stream::barrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT,
+                                    VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_READ_BIT);
+            commands_->submit_and_wait();
+        }
+    }
+
+    void trace(std::span<const ray> rays, std::span<hit> hits, std::uint32_t mode) {
+        if (!blob_.handle()) fail("vulkan: trace called before any structure was uploaded");
+        if (hits.size() < rays.size()) fail("vulkan: ", rays.size(), " rays but room for only ", hits.size(), " hits");
+        for (std::size_t first = 0; first < rays.size(); first += slice_) {
+            std::size_t n = std::min(slice_, rays.size() - first);
+            trace_slice(rays.subspan(first, n), hits.subspan(first, n), mode);
+        }
+    }
+
+    std::string device_name() const { return ctx_->name(); }
+    // Type, limits (maxStorageBufferRange...) and API version of the device in use.
+    const VkPhysicalDeviceProperties& device_properties() const { return ctx_->properties(); }
+    // True when some buffer is reached through staging copies (discrete GPUs, or
+    // vulkan_options::force_staging) rather than mapped directly.
+    bool uses_staging() const {
+        return (blob_.handle() && !blob_.mapped()) || (rays_.handle() && !rays_.mapped()) ||
+               (hits_.handle() && !hits_.mapped());
+    }
+    // Seconds spent creating the compute pipeline (driver compiles SPIR-V to machine code).
+    double pipeline_seconds() const { return pipeline_seconds_; }
+
+private:
+    // Grow-only ray/hit buffers (and their staging twins where they are not mapped).
+    void reserve(std::size_t count) {
+        if (rays_.size() >= count * sizeof(ray)) return;
+        std::size_t capacity = std::min(slice_, std::bit_ceil(count));
+        VkDeviceSize bytes = capacity * sizeof(ray);
+        bool mapped = !options_.force_staging;
+        // Free the old buffers before allocating the new ones.
+        rays_ = buffer();
+        hits_ = buffer();
+        rays_staging_ = buffer();
+        hits_staging_ = buffer();
+        rays_ = buffer(*ctx_, bytes, buffer_role::storage_upload, mapped, "ray buffer");
+        hits_ = buffer(*ctx_, bytes, buffer_role::storage_readback, mapped, "hit buffer");
+        if (!rays_.mapped())
+            rays_staging_ = buffer(*ctx_, bytes, buffer_role::staging_upload, true, "ray staging buffer");
+        if (!hits_.mapped())
+            hits_staging_ = buffer(*ctx_, bytes, buffer_role::staging_readback, true, "hit staging buffer");
+    }
+
+    void trace_slice(std::span<const ray> rays, std::span<hit> hits, std::uint32_t mode) {
+        reserve(rays.size());
+        VkDeviceSize bytes = rays.size_bytes();
+        std::memcpy(rays_.mapped() ? rays_.mapped() : rays_staging_.mapped(), rays.data(), bytes);
+
+        VkCommandBuffer cmd = commands_->begin();
+        if (!rays_.mapped()) {
+            VkBufferCopy region{0, 0, bytes};
+            vkCmdCopyBuffer(cmd, rays_staging_.handle(), rays_.handle(), 1, &region);
+            command_stream::barrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT,
+                                    VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_READ_BIT);
+        }
+        push_constants pc{blob_.address(), rays_.address(), hits_.address(), std::uint32_t(rays.size()), mode};
+        pipeline_->bind(cmd, pc);
+        vkCmdDispatch(cmd, std::uint32_t((rays.size() + group_size - 1) / group_size), 1, 1);
+        // The host may read the hits only after a barrier that makes shader writes
+        // visible to it (directly, or after the copy into the staging buffer).
+        if (hits_.mapped()) {
+            command_stream::barrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
+                                    VK_PIPELINE_STAGE_HOST_BIT, VK_ACCESS_HOST_READ_BIT);
+        } else {
+            command_stream::barrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
+                                    VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_READ_BIT);
+            VkBufferCopy region{0, 0, bytes};
+            vkCmdCopyBuffer(cmd, hits_.handle(), hits_staging_.handle(), 1, &region);
+            command_stream::barrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT,
+                                    VK_PIPELINE_STAGE_HOST_BIT, VK_ACCESS_HOST_READ_BIT);
+        }
+        commands_->submit_and_wait();
+        std::memcpy(hits.data(), hits_.mapped() ? hits_.mapped() : hits_staging_.mapped(), bytes);
+    }
+
+    vulkan_options options_;
+    // Declaration order is destruction order reversed: the context goes last.
+    std::unique_ptr<context> ctx_;
+    std::unique_ptr<command_stream> commands_;
+    std::unique_ptr<compute_pipeline> pipeline_;
+    buffer blob_, rays_, hits_, rays_staging_, hits_staging_;
+    std::size_t slice_ = max_slice_rays;
+    double pipeline_seconds_ = 0;
+};
+
+}  // namespace voxray::vulkan_detail

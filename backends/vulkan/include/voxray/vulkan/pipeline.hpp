@@ -1,0 +1,95 @@
+// The compute pipeline of one structure kernel: its embedded SPIR-V, a layout with push
+// constants only (buffers are reached by device address, so there are no descriptors),
+// and the push constant record that must match backends/vulkan/shaders/entry.glsl.
+#pragma once
+#include <bit>
+#include <cstddef>
+#include <cstdint>
+#include <span>
+
+#include <vulkan/vulkan.h>
+
+#include "voxray/vulkan/check.hpp"
+#include "voxray/vulkan/device.hpp"
+
+namespace voxray::vulkan_detail {
+
+// Invocations per workgroup: layout(local_size_x = 64) in entry.glsl.
+inline constexpr std::uint32_t group_size = 64;
+
+// Addresses are 64-bit; the shader reads each as a uvec2 (low word first), which is the
+// same bytes on a little-endian host. std430 puts the fields at these offsets.
+struct push_constants {
+    std::uint64_t blob;
+    std::uint64_t rays;
+    std::uint64_t hits;
+    std::uint32_t count;
+    std::uint32_t mode;
+};
+static_assert(std::endian::native == std::endian::little, "addresses are passed as (low, high) word pairs");
+static_assert(sizeof(push_constants) == 32);
+static_assert(offsetof(push_constants, rays) == 8 && offsetof(push_constants, hits) == 16);
+static_assert(offsetof(push_constants, count) == 24 && offsetof(push_constants, mode) == 28);
+
+class compute_pipeline {
+public:
+    compute_pipeline(const context& ctx, std::span<const std::uint32_t> spirv) : device_(ctx.device()) {
+        try {
+            create(spirv);
+        } catch (...) {
+            destroy();
+            throw;
+        }
+    }
+    ~compute_pipeline() { destroy(); }
+    compute_pipeline(const compute_pipeline&) = delete;
+    compute_pipeline& operator=(const compute_pipeline&) = delete;
+
+    void bind(VkCommandBuffer cmd, const push_constants& pc) const {
+        vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline_);
+        vkCmdPushConstants(cmd, layout_, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(pc), &pc);
+    }
+
+private:
+    void create(std::span<const std::uint32_t> spirv) {
+        auto module_info = vk_struct<VkShaderModuleCreateInfo>(VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO);
+        module_info.codeSize = spirv.size_bytes();
+        module_info.pCode = spirv.data();
+        vk_check(vkCreateShaderModule(device_, &module_info, nullptr, &module_), "vkCreateShaderModule");
+
+        // 32 bytes: within the 128 bytes every device must offer.
+        VkPushConstantRange range{VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(push_constants)};
+        auto layout_info = vk_struct<VkPipelineLayoutCreateInfo>(VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO);
+        layout_info.pushConstantRangeCount = 1;
+        layout_info.pPushConstantRanges = &range;
+        vk_check(vkCreatePipelineLayout(device_, &layout_info, nullptr, &layout_), "vkCreatePipelineLayout");
+
+        auto info = vk_struct<VkComputePipelineCreateInfo>(VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO);
+        info.stage.sType = VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO;
+        info.stage.stage = VK_SHADER_STAGE_COMPUTE_BIT;
+        info.stage.module = module_;
+        info.stage.pName = "main";
+        info.layout = layout_;
+        vk_check(vkCreateComputePipelines(device_, VK_NULL_HANDLE, 1, &info, nullptr, &pipeline_),
+                 "vkCreateComputePipelines");
+        // The module is only needed while the pipeline is created.
+        vkDestroyShaderModule(device_, module_, nullptr);
+        module_ = VK_NULL_HANDLE;
+    }
+
+    void destroy() {
+        if (pipeline_) vkDestroyPipeline(device_, pipeline_, nullptr);
+        if (layout_) vkDestroyPipelineLayout(device_, layout_, nullptr);
+        if (module_) vkDestroyShaderModule(device_, module_, nullptr);
+        pipeline_ = VK_NULL_HANDLE;
+        layout_ = VK_NULL_HANDLE;
+        module_ = VK_NULL_HANDLE;
+    }
+
+    VkDevice device_;
+    VkShaderModule module_ = VK_NULL_HANDLE;
+    VkPipelineLayout layout_ = VK_NULL_HANDLE;
+    VkPipeline pipeline_ = VK_NULL_HANDLE;
+};
+
+}  // namespace voxray::vulkan_detail

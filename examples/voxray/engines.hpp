@@ -1,0 +1,127 @@
+// Run-time choice of structure x backend for the tool. The library's tracer is a
+// compile-time policy; the tool, which takes names on the command line, wraps each
+// combination once behind this small virtual interface (outside the hot loop).
+#pragma once
+#include <memory>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "voxray/cpu.hpp"
+#include "voxray/structures/dense_grid.hpp"
+#if VOXRAY_WITH_OPENCL
+#include "voxray/opencl.hpp"
+#endif
+#if VOXRAY_WITH_VULKAN
+#include "voxray/vulkan.hpp"
+#endif
+#if VOXRAY_WITH_EMBREE
+#include "voxray/embree/box_scene.hpp"
+#include "voxray/embree/quad_scene.hpp"
+#endif
+
+namespace voxray::tool {
+
+inline const std::vector<std::string> structure_names = {"dense", "embree-quads", "embree-boxes"};
+inline const std::vector<std::string> backend_names = {"cpu", "cpu-scalar", "opencl", "vulkan"};
+
+inline bool is_embree(const std::string& structure) { return structure.rfind("embree-", 0) == 0; }
+
+class traceable {
+public:
+    virtual ~traceable() = default;
+    virtual void closest_hit(std::span<const ray> rays, std::span<hit> hits) = 0;
+    virtual void any_hit(std::span<const ray> rays, std::span<hit> hits) = 0;
+    virtual std::string device() const { return "cpu"; }
+};
+
+// A built structure with its size and build time, shared by every backend that traces it.
+struct built {
+    std::string name;
+    std::size_t bytes = 0;
+    double build_seconds = 0;
+    std::shared_ptr<void> object;
+};
+
+inline built build_structure(const std::string& name, const voxel_model& model) {
+    built b{name, 0, 0, nullptr};
+    if (name == "dense") {
+        auto s = std::make_shared<dense_grid>(model);
+        b.bytes = s->bytes();
+        b.build_seconds = s->build_seconds();
+        b.object = s;
+        return b;
+    }
+#if VOXRAY_WITH_EMBREE
+    if (name == "embree-quads") {
+        auto s = std::make_shared<embree::quad_scene>(model);
+        b.bytes = s->bytes();
+        b.build_seconds = s->build_seconds();
+        b.object = s;
+        return b;
+    }
+    if (name == "embree-boxes") {
+        auto s = std::make_shared<embree::box_scene>(model);
+        b.bytes = s->bytes();
+        b.build_seconds = s->build_seconds();
+        b.object = s;
+        return b;
+    }
+#endif
+    fail("unknown or unavailable structure '", name, "' (known: dense, embree-quads, embree-boxes)");
+}
+
+template <class Backend>
+class policy_traceable final : public traceable {
+public:
+    explicit policy_traceable(std::shared_ptr<dense_grid> grid) : grid_(std::move(grid)), tracer_(*grid_) {}
+    void closest_hit(std::span<const ray> rays, std::span<hit> hits) override { tracer_.closest_hit(rays, hits); }
+    void any_hit(std::span<const ray> rays, std::span<hit> hits) override { tracer_.any_hit(rays, hits); }
+    std::string device() const override {
+        if constexpr (requires { tracer_.engine().device_name(); }) return tracer_.engine().device_name();
+        else return "cpu";
+    }
+
+private:
+    std::shared_ptr<dense_grid> grid_;
+    mutable tracer<Backend, dense_grid> tracer_;
+};
+
+template <class Scene>
+class embree_traceable final : public traceable {
+public:
+    explicit embree_traceable(std::shared_ptr<Scene> scene) : scene_(std::move(scene)) {}
+    void closest_hit(std::span<const ray> rays, std::span<hit> hits) override { scene_->closest_hit(rays, hits); }
+    void any_hit(std::span<const ray> rays, std::span<hit> hits) override { scene_->any_hit(rays, hits); }
+    std::string device() const override { return "cpu (embree)"; }
+
+private:
+    std::shared_ptr<Scene> scene_;
+};
+
+// Whether the pair exists at all (Embree structures run on the CPU only).
+inline bool pair_exists(const std::string& structure, const std::string& backend) {
+    return !is_embree(structure) || backend == "cpu";
+}
+
+inline std::unique_ptr<traceable> make_traceable(const built& s, const std::string& backend) {
+    if (!pair_exists(s.name, backend)) fail("structure ", s.name, " runs on the cpu backend only, not ", backend);
+#if VOXRAY_WITH_EMBREE
+    if (s.name == "embree-quads")
+        return std::make_unique<embree_traceable<embree::quad_scene>>(std::static_pointer_cast<embree::quad_scene>(s.object));
+    if (s.name == "embree-boxes")
+        return std::make_unique<embree_traceable<embree::box_scene>>(std::static_pointer_cast<embree::box_scene>(s.object));
+#endif
+    auto grid = std::static_pointer_cast<dense_grid>(s.object);
+    if (backend == "cpu") return std::make_unique<policy_traceable<cpu>>(grid);
+    if (backend == "cpu-scalar") return std::make_unique<policy_traceable<cpu_scalar>>(grid);
+#if VOXRAY_WITH_OPENCL
+    if (backend == "opencl") return std::make_unique<policy_traceable<opencl>>(grid);
+#endif
+#if VOXRAY_WITH_VULKAN
+    if (backend == "vulkan") return std::make_unique<policy_traceable<vulkan>>(grid);
+#endif
+    fail("unknown or unavailable backend '", backend, "' (known: cpu, cpu-scalar, opencl, vulkan)");
+}
+
+}  // namespace voxray::tool

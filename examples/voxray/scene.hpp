@@ -1,0 +1,36 @@
+// Loads a scene given on the command line: a .vox file, an .obj/.ply mesh (voxelized at
+// --resolution), or builtin:NAME for the procedural scenes.
+#pragma once
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <string>
+
+#include "voxray/io/mesh_loader.hpp"
+#include "voxray/io/vox_reader.hpp"
+#include "voxray/model/voxel_model.hpp"
+#include "voxray/scenes/builtin.hpp"
+
+namespace voxray::tool {
+
+inline voxel_model load_scene(const std::string& spec, int resolution) {
+    auto start = std::chrono::steady_clock::now();
+    std::fprintf(stderr, "loading %s ...\n", spec.c_str());
+    voxel_model model;
+    if (spec.rfind("builtin:", 0) == 0) {
+        model = scenes::make_builtin(spec.substr(8));
+    } else {
+        std::filesystem::path path(spec);
+        if (!std::filesystem::exists(path)) fail("scene file ", spec, " does not exist");
+        auto ext = path.extension().string();
+        if (ext == ".vox") model = io::load_vox(path);
+        else if (io::is_mesh_path(path)) model = io::load_mesh_model(path, resolution);
+        else fail("scene ", spec, ": unknown file type '", ext, "' (expected .vox, .obj, .ply or builtin:NAME)");
+    }
+    double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    std::fprintf(stderr, "loaded %s: %llu voxels in %.2f s\n", spec.c_str(),
+                 (unsigned long long)model.voxel_count(), seconds);
+    return model;
+}
+
+}  // namespace voxray::tool

@@ -1,0 +1,35 @@
+#!/usr/bin/env bash
+# The main job: install what is missing, build, render the built-in scene on every
+# backend to PNG and print a benchmark table (dense grid vs the Embree baselines).
+set -euo pipefail
+source "$(dirname "${BASH_SOURCE[0]}")/setup.sh"
+install_packages
+configure_and_build
+
+SCENE="${SCENE:-builtin:terrain}"
+OUT="$BUILD_DIR/demo"
+mkdir -p "$OUT"
+VOXRAY="$BUILD_DIR/voxray"
+
+echo "== render $SCENE on every backend"
+for backend in cpu cpu-scalar opencl vulkan; do
+    "$VOXRAY" render "$SCENE" --structure dense --backend "$backend" --width 960 --height 540 \
+        --out "$OUT/terrain_dense_$backend.png"
+done
+"$VOXRAY" render "$SCENE" --structure embree-boxes --backend cpu --width 960 --height 540 \
+    --out "$OUT/terrain_embree-boxes_cpu.png"
+
+echo "== benchmark: $SCENE, primary and shadow rays, 1280x720, median of 3 runs"
+printf '%-14s %-11s %-8s %10s %10s %10s %10s\n' structure backend rays "median" "min" "max" "steps/ray"
+for rays in primary shadow; do
+    for pair in dense:cpu dense:cpu-scalar dense:opencl dense:vulkan embree-boxes:cpu embree-quads:cpu; do
+        s="${pair%%:*}"; b="${pair##*:}"
+        out=$("$VOXRAY" bench "$SCENE" --structure "$s" --backend "$b" --rays "$rays" --width 1280 --height 720 \
+            --runs 3 --json "$OUT/bench_${s}_${b}_${rays}.json" 2>/dev/null) || { echo "bench $s/$b/$rays failed:"; echo "$out"; exit 1; }
+        # Last line: "median X Mrays/s (min Y, max Z)"; second line holds "steps/ray S".
+        read -r median lo hi <<<"$(tail -n1 <<<"$out" | sed -E 's/median ([0-9.]+) Mrays\/s \(min ([0-9.]+), max ([0-9.]+)\)/\1 \2 \3/')"
+        steps=$(grep -o 'steps/ray [0-9.]*' <<<"$out" | cut -d' ' -f2)
+        printf '%-14s %-11s %-8s %10s %10s %10s %10s\n' "$s" "$b" "$rays" "$median" "$lo" "$hi" "$steps"
+    done
+done
+echo "== images in $OUT (Mrays/s above; JSON beside them)"
