@@ -1,13 +1,16 @@
 # voxray::vulkan — the portable kernels as GLSL compute shaders, compiled to SPIR-V at build
 # time and embedded in generated headers, so users need no shader compiler at run time.
 # Structure data, rays and hits are reached by buffer device address (Vulkan 1.2).
-find_package(Vulkan COMPONENTS glslangValidator)
-if(NOT Vulkan_FOUND OR NOT TARGET Vulkan::Vulkan)
-    voxray_backend_missing(vulkan "Vulkan headers/loader not found (Debian: libvulkan-dev)")
-    return()
-endif()
-if(NOT Vulkan_glslangValidator_FOUND OR NOT Vulkan_GLSLANG_VALIDATOR_EXECUTABLE)
-    voxray_backend_missing(vulkan "glslangValidator not found (Debian: glslang-tools)")
+find_package(Vulkan 1.2 COMPONENTS glslangValidator)
+# Vulkan_FOUND is false when either part is missing: say which one.
+if(NOT Vulkan_FOUND OR NOT TARGET Vulkan::Vulkan OR NOT TARGET Vulkan::glslangValidator)
+    if(NOT Vulkan_LIBRARY OR NOT Vulkan_INCLUDE_DIR)
+        voxray_backend_missing(vulkan "Vulkan headers and loader not found (Debian: libvulkan-dev)")
+    elseif(NOT Vulkan_GLSLANG_VALIDATOR_EXECUTABLE)
+        voxray_backend_missing(vulkan "glslangValidator not found (Debian: glslang-tools)")
+    else()
+        voxray_backend_missing(vulkan "Vulkan headers ${Vulkan_VERSION} are older than 1.2")
+    endif()
     return()
 endif()
 find_program(VOXRAY_SPIRV_VAL spirv-val)

@@ -164,6 +164,38 @@ TEST(EmbreeScenes, AnyHit) {
     expect_hit(hi[0], {11, 1, 1}, face::inside, 0, 6, "any-hit inside start");
 }
 
+TEST(EmbreeScenes, FarFromTheOrigin) {
+    // Near the model's coordinate limit floats still hold voxel corners exactly (2^19 < 2^24).
+    const glm::ivec3 v((1 << 19) + 3, -(1 << 19), 7);
+    voxel_model m;
+    m.set(v, 42);
+    m.set(v + glm::ivec3(0, 0, 1), 43);
+    embree::quad_scene q(m);
+    embree::box_scene b(m);
+    glm::vec3 c = glm::vec3(v) + 0.5f;
+    for (const auto* name : {"quads", "boxes"}) {
+        auto trace = [&](const ray& r) { return name[0] == 'q' ? closest1(q, r) : closest1(b, r); };
+        expect_hit(trace(make_ray(c - glm::vec3(10, 0, 0), {1, 0, 0})), v, face::neg_x, 9.5f, 42, name);
+        expect_hit(trace(make_ray(c + glm::vec3(0, 0, 20), {0, 0, -2})), v + glm::ivec3(0, 0, 1), face::pos_z, 9.25f,
+                   43, name);
+        expect_miss(trace(make_ray(c - glm::vec3(10, 0, 0), {-1, 0, 0})), name);
+        expect_miss(trace(make_ray({1e30f, c.y, c.z}, {-1, 0, 0}, 0, 1e20f)), name);
+    }
+    expect_hit(closest1(b, make_ray(c, {0, 1, 0})), v, face::inside, 0, 42, "inside, far away");
+    // Origins and directions beyond 2^40 (Embree asserts below 1.8e18) are clipped to the
+    // model's bounds in double before Embree sees them.
+    for (const auto* name : {"quads", "boxes"}) {
+        auto trace = [&](const ray& r) { return name[0] == 'q' ? closest1(q, r) : closest1(b, r); };
+        expect_hit(trace(make_ray({0x1p41f, c.y, c.z}, {-1, 0, 0})), v, face::pos_x, 0x1p41f - float(v.x + 1), 42,
+                   name);
+        expect_hit(trace(make_ray(c - glm::vec3(10, 0, 0), {1e25f, 0, 0})), v, face::neg_x, 9.5e-25f, 42, name);
+        expect_hit(trace(make_ray(c - glm::vec3(10, 0, 0), {1e25f, 0, 0}, -1e-24f, 1e-24f)), v, face::neg_x,
+                   9.5e-25f, 42, name);
+        expect_miss(trace(make_ray(c - glm::vec3(10, 0, 0), {1e25f, 0, 0}, 0, 9e-25f)), name);
+        expect_miss(trace(make_ray({0x1p41f, c.y + 5, c.z}, {-1, 0, 0})), name);
+    }
+}
+
 TEST(EmbreeScenes, EmptyModelAndSpanChecks) {
     voxel_model empty;
     embree::quad_scene q(empty);
@@ -290,6 +322,54 @@ TEST(EmbreeScenes, RandomModelsMatchOracle) {
         // here); they must stay a small minority.
         EXPECT_LT(tb.ties, rays.size() / 10);
         EXPECT_LT(tq.ties, rays.size() / 10);
+    }
+}
+
+// Values of every magnitude and sign, zeros, infinities and NaNs: Embree must never see a
+// ray it asserts on, and every hit must name a solid voxel with its material.
+TEST(EmbreeScenes, WildRaysAreSafe) {
+    voxel_model m = random_model(5);
+    embree::quad_scene q(m);
+    embree::box_scene b(m);
+    std::mt19937 rng(123);
+    std::uniform_real_distribution<float> u(0, 1);
+    auto wild = [&]() -> float {
+        float pick = u(rng);
+        if (pick < 0.05f) return 0.0f;
+        if (pick < 0.07f) return u(rng) < 0.5f ? inf : -inf;
+        if (pick < 0.08f) return nan;
+        if (pick < 0.5f) return (u(rng) - 0.5f) * 40.0f;  // near the model
+        return (u(rng) < 0.5f ? -1.0f : 1.0f) * std::ldexp(u(rng), int(u(rng) * 250) - 125);
+    };
+    std::vector<ray> rays(20000);
+    for (ray& r : rays) {
+        r.origin = {wild(), wild(), wild()};
+        r.direction = {wild(), wild(), wild()};
+        r.tmin = u(rng) < 0.6f ? 0.0f : wild();
+        r.tmax = u(rng) < 0.6f ? inf : wild();
+    }
+    for (int any = 0; any < 2; ++any) {
+        std::vector<hit> hq(rays.size()), hb(rays.size());
+        if (any) {
+            q.any_hit(rays, hq);
+            b.any_hit(rays, hb);
+        } else {
+            q.closest_hit(rays, hq);
+            b.closest_hit(rays, hb);
+        }
+        for (std::size_t i = 0; i < rays.size(); ++i) {
+            for (const hit* h : {&hq[i], &hb[i]}) {
+                if (!h->is_hit()) {
+                    EXPECT_EQ(h->normal, face::none) << i;
+                    continue;
+                }
+                if (any && h == &hq[i]) continue;  // status only
+                EXPECT_EQ(m.get(h->voxel), h->material) << i;
+                EXPECT_NE(h->material, 0u) << i;
+                EXPECT_LE(static_cast<std::uint32_t>(h->normal), 6u) << i;
+                EXPECT_TRUE(std::isfinite(h->t)) << i;
+            }
+        }
     }
 }
 

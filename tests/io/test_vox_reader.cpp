@@ -225,8 +225,8 @@ TEST(VoxReader, LoadVoxMatchesTheComposedScene) {
     VOXRAY_REQUIRE_DATA();
     auto path = *voxray::test::data_dir() / "vox" / "minecraft_tree.vox";
     auto model = load_vox(path);
-    auto bytes = read_file_bytes(path);
-    auto again = read_vox(bytes, "tree");
+    auto raw = read_file_bytes(path);
+    auto again = read_vox(raw, "tree");
     EXPECT_EQ(model.voxel_count(), 78'696u);
     ASSERT_EQ(again.voxel_count(), model.voxel_count());
     std::uint64_t same = 0;

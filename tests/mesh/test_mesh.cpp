@@ -217,6 +217,19 @@ TEST(Voxelizer, RejectsBadResolutionAndEmptyMeshes) {
     point.groups = {0};
     point.group_names = {"p"};
     expect_error([&] { voxray::io::voxelize(point, {16, 1}); }, "zero");
+    // Hand-built meshes are checked before use.
+    auto bad_index = m;
+    bad_index.triangles[5].y = 99;
+    expect_error([&] { voxray::io::voxelize(bad_index, {16, 1}); }, "triangle 5", "vertex 99", "8 vertices");
+    auto bad_groups = m;
+    bad_groups.groups.pop_back();
+    expect_error([&] { voxray::io::voxelize(bad_groups, {16, 1}); }, "11 group ids", "12 triangles");
+    auto nan = m;
+    nan.positions[3].z = std::nan("");
+    expect_error([&] { voxray::io::voxelize(nan, {16, 1}); }, "vertex 3", "non-finite");
+    auto no_groups = m;
+    no_groups.groups.clear();
+    EXPECT_EQ(voxray::io::voxelize(no_groups, {4, 1}).voxel_count(), 56u);
 }
 
 TEST(GroupPalette, StableAndWrapping) {

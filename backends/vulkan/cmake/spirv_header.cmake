@@ -12,8 +12,9 @@ endif()
 # SPIR-V words are little-endian in the file: reverse the 4 bytes of each word.
 string(REGEX REPLACE "(..)(..)(..)(..)" "0x\\4\\3\\2\\1u," words "${hex}")
 string(REGEX REPLACE "((0x........u,){8})" "\\1\n    " words "${words}")
+get_filename_component(source "${SPIRV}" NAME)
 file(WRITE "${HEADER}.tmp"
-"// Generated from ${SPIRV} by backends/vulkan/cmake/spirv_header.cmake: do not edit.\n"
+"// Generated from ${source} by backends/vulkan/cmake/spirv_header.cmake: do not edit.\n"
 "#pragma once\n#include <cstdint>\n\n"
 "inline constexpr std::uint32_t ${NAME}[] = {\n    ${words}\n};\n")
 # Leave the header untouched when the code did not change, so users' sources that

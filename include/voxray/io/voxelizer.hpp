@@ -20,11 +20,8 @@
 #include <cmath>
 #include <cstdint>
 #include <cstring>
-#include <exception>
 #include <limits>
 #include <memory>
-#include <mutex>
-#include <thread>
 #include <utility>
 #include <vector>
 
@@ -35,6 +32,7 @@
 #include "voxray/io/group_palette.hpp"
 #include "voxray/io/mesh.hpp"
 #include "voxray/io/triangle_box.hpp"
+#include "voxray/model/build_threads.hpp"
 #include "voxray/model/voxel_model.hpp"
 
 namespace voxray::io {
@@ -55,11 +53,12 @@ inline voxel_grid_map make_grid_map(const mesh_bounds& b, int resolution) {
         fail("voxelization resolution ", resolution, " is outside the supported range 1..", max_voxelize_resolution);
     auto ext = b.extent();
     int longest = ext.x >= ext.y && ext.x >= ext.z ? 0 : (ext.y >= ext.z ? 1 : 2);
-    if (!(ext[longest] > 0.0) || !std::isfinite(ext[longest]))
+    double scale = double(resolution) / ext[longest];
+    if (!(ext[longest] > 0.0) || !std::isfinite(ext[longest]) || !std::isfinite(scale))
         fail("mesh has zero or non-finite extent (", ext[longest], "): cannot choose a voxel size");
     voxel_grid_map g;
     g.origin = b.min;
-    g.scale = double(resolution) / ext[longest];
+    g.scale = scale;
     for (int i = 0; i < 3; ++i) {
         // The small tolerance keeps 127.9999999 and 128.0000001 both at 128 voxels.
         double cells = std::ceil(ext[i] * g.scale - 1e-7);
@@ -161,22 +160,27 @@ inline constexpr int tile_chunks_bits = 3;                 // 8 chunks per tile 
 inline constexpr int tile_edge = voxel_model::chunk_edge << tile_chunks_bits;  // 128 voxels
 inline constexpr int tile_chunk_count = 1 << (3 * tile_chunks_bits);           // 512
 
+inline constexpr std::size_t max_tile_pairs = std::size_t(1) << 30;  // 4 GiB of ids
+
 // Triangle ids per tile, in file order (a counting sort over (tile, triangle) pairs).
 struct tile_bins {
     glm::ivec3 tiles{0};
-    std::vector<std::uint32_t> offsets;    // per tile, into ids; size tiles + 1
+    std::vector<std::size_t> offsets;      // per tile, into ids; size tiles + 1
     std::vector<std::uint32_t> ids;
 
     int tile_index(glm::ivec3 t) const { return (t.z * tiles.y + t.y) * tiles.x + t.x; }
     glm::ivec3 tile_coord(int i) const { return {i % tiles.x, (i / tiles.x) % tiles.y, i / (tiles.x * tiles.y)}; }
 };
 
+// Calls f(tile) for each tile whose closed box the triangle touches; the same
+// candidate slack as rasterize_triangle, so no touching cell is lost at a border.
 template <class ForTiles>
-void for_each_tile_of(const glm::dvec3* v, const voxel_grid_map& g, glm::ivec3 tiles, ForTiles&& f) {
+void for_each_tile_of(const glm::dvec3* v, const voxel_grid_map& g, ForTiles&& f) {
+    constexpr double slack = 1e-7;
     glm::dvec3 bmin = glm::min(v[0], glm::min(v[1], v[2])), bmax = glm::max(v[0], glm::max(v[1], v[2]));
     glm::ivec3 c0, c1;
     for (int i = 0; i < 3; ++i)
-        if (!cell_span(bmin[i], bmax[i], 0, g.dims[i] - 1, c0[i], c1[i])) return;
+        if (!cell_span(bmin[i] - slack, bmax[i] + slack, 0, g.dims[i] - 1, c0[i], c1[i])) return;
     glm::ivec3 t0 = c0 / tile_edge, t1 = c1 / tile_edge;
     bool single = t0 == t1;
     glm::ivec3 t;
@@ -186,29 +190,30 @@ void for_each_tile_of(const glm::dvec3* v, const voxel_grid_map& g, glm::ivec3 t
                 glm::dvec3 half(0.5 * tile_edge), centre = (glm::dvec3(t) + 0.5) * double(tile_edge);
                 if (single || triangle_box_overlap(centre, half, v[0], v[1], v[2])) f(t);
             }
-    (void)tiles;
 }
 
 inline tile_bins bin_triangles(const std::vector<glm::dvec3>& vox, const triangle_mesh& mesh, const voxel_grid_map& g) {
     tile_bins bins;
     bins.tiles = (g.dims + (tile_edge - 1)) / tile_edge;
     std::size_t tile_total = std::size_t(bins.tiles.x) * bins.tiles.y * bins.tiles.z;
-    std::vector<std::uint32_t> count(tile_total + 1, 0);
+    std::vector<std::size_t> count(tile_total + 1, 0);
     auto corners = [&](std::size_t t, glm::dvec3* v) {
         for (int k = 0; k < 3; ++k) v[k] = vox[mesh.triangles[t][k]];
     };
     glm::dvec3 v[3];
     for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {  // pass 1: counts
         corners(t, v);
-        for_each_tile_of(v, g, bins.tiles, [&](glm::ivec3 c) { ++count[bins.tile_index(c)]; });
+        for_each_tile_of(v, g, [&](glm::ivec3 c) { ++count[bins.tile_index(c)]; });
     }
     bins.offsets.assign(tile_total + 1, 0);
     for (std::size_t i = 0; i < tile_total; ++i) bins.offsets[i + 1] = bins.offsets[i] + count[i];
+    // Huge triangles repeated many times could ask for billions of pairs.
+    check_limit("voxelizer triangle/tile pair count", bins.offsets[tile_total], max_tile_pairs);
     bins.ids.resize(bins.offsets[tile_total]);
-    std::vector<std::uint32_t> cursor(bins.offsets.begin(), bins.offsets.end() - 1);
+    std::vector<std::size_t> cursor(bins.offsets.begin(), bins.offsets.end() - 1);
     for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {  // pass 2: fill, file order kept
         corners(t, v);
-        for_each_tile_of(v, g, bins.tiles, [&](glm::ivec3 c) { bins.ids[cursor[bins.tile_index(c)]++] = std::uint32_t(t); });
+        for_each_tile_of(v, g, [&](glm::ivec3 c) { bins.ids[cursor[bins.tile_index(c)]++] = std::uint32_t(t); });
     }
     return bins;
 }
@@ -220,6 +225,7 @@ inline tile_bins bin_triangles(const std::vector<glm::dvec3>& vox, const triangl
 inline voxel_model voxelize(const triangle_mesh& mesh, const voxelize_options& opt = {}) {
     using namespace detail;
     if (mesh.triangles.empty()) fail("cannot voxelize a mesh with no triangles");
+    mesh.validate();
     auto grid = make_grid_map(mesh.bounds(), opt.resolution);
 
     std::vector<glm::dvec3> vox(mesh.positions.size());
@@ -239,58 +245,43 @@ inline voxel_model voxelize(const triangle_mesh& mesh, const voxelize_options& o
         glm::ivec3 coord;
         chunk_ptr data;
     };
-    unsigned threads = opt.threads ? opt.threads : std::max(1u, std::thread::hardware_concurrency());
-    threads = std::max(1u, std::min<unsigned>(threads, unsigned(order.size())));
+    unsigned threads = resolve_build_threads(opt.threads, order.size());
     std::vector<std::vector<placed_chunk>> results(threads);
     std::atomic<std::size_t> next{0};
-    std::exception_ptr failure;
-    std::mutex failure_mutex;
-
-    auto worker = [&](unsigned id) {
-        try {
-            constexpr int cv = voxel_model::chunk_voxels;
-            std::vector<std::uint8_t> buffer(std::size_t(tile_chunk_count) * cv, 0);  // chunk-major
-            std::vector<int> touched;
-            std::vector<char> is_touched(tile_chunk_count, 0);
-            for (std::size_t k; (k = next.fetch_add(1)) < order.size();) {
-                int tile = order[k];
-                glm::ivec3 origin = bins.tile_coord(tile) * tile_edge;
-                glm::ivec3 hi = glm::min(origin + tile_edge, grid.dims);
-                for (auto i = bins.offsets[tile]; i < bins.offsets[tile + 1]; ++i) {
-                    std::uint32_t t = bins.ids[i];
-                    auto& ix = mesh.triangles[t];
-                    std::uint8_t colour = group_palette_index(mesh.groups[t]);
-                    triangle_cell_test test(vox[ix.x], vox[ix.y], vox[ix.z]);
-                    rasterize_triangle(test, origin, hi, [&](glm::ivec3 cell) {
-                        glm::ivec3 l = (cell - origin) >> voxel_model::chunk_bits;
-                        int lc = l.x | (l.y << tile_chunks_bits) | (l.z << (2 * tile_chunks_bits));
-                        auto& b = buffer[std::size_t(lc) * cv + voxel_model::local_index(cell)];
-                        if (!b) b = colour;  // first triangle in file order wins
-                        if (!is_touched[lc]) { is_touched[lc] = 1; touched.push_back(lc); }
-                    });
-                }
-                for (int lc : touched) {
-                    auto c = std::make_unique<voxel_model::chunk>();
-                    std::uint8_t* src = buffer.data() + std::size_t(lc) * cv;
-                    std::memcpy(c->voxels.data(), src, cv);
-                    std::memset(src, 0, cv);
-                    is_touched[lc] = 0;
-                    glm::ivec3 l{lc & 7, (lc >> 3) & 7, lc >> 6};
-                    results[id].push_back({(origin >> voxel_model::chunk_bits) + l, std::move(c)});
-                }
-                touched.clear();
+    run_build_threads(threads, [&](unsigned id) {
+        constexpr int cv = voxel_model::chunk_voxels;
+        std::vector<std::uint8_t> buffer(std::size_t(tile_chunk_count) * cv, 0);  // chunk-major
+        std::vector<int> touched;
+        std::vector<char> is_touched(tile_chunk_count, 0);
+        for (std::size_t k; (k = next.fetch_add(1)) < order.size();) {
+            int tile = order[k];
+            glm::ivec3 origin = bins.tile_coord(tile) * tile_edge;
+            glm::ivec3 hi = glm::min(origin + tile_edge, grid.dims);
+            for (auto i = bins.offsets[tile]; i < bins.offsets[tile + 1]; ++i) {
+                std::uint32_t t = bins.ids[i];
+                auto& ix = mesh.triangles[t];
+                std::uint8_t colour = group_palette_index(mesh.group_of(t));
+                triangle_cell_test test(vox[ix.x], vox[ix.y], vox[ix.z]);
+                rasterize_triangle(test, origin, hi, [&](glm::ivec3 cell) {
+                    glm::ivec3 l = (cell - origin) >> voxel_model::chunk_bits;
+                    int lc = l.x | (l.y << tile_chunks_bits) | (l.z << (2 * tile_chunks_bits));
+                    auto& b = buffer[std::size_t(lc) * cv + voxel_model::local_index(cell)];
+                    if (!b) b = colour;  // first triangle in file order wins
+                    if (!is_touched[lc]) { is_touched[lc] = 1; touched.push_back(lc); }
+                });
             }
-        } catch (...) {
-            std::lock_guard lock(failure_mutex);
-            if (!failure) failure = std::current_exception();
-            next = order.size();
+            for (int lc : touched) {
+                auto c = std::make_unique<voxel_model::chunk>();
+                std::uint8_t* src = buffer.data() + std::size_t(lc) * cv;
+                std::memcpy(c->voxels.data(), src, cv);
+                std::memset(src, 0, cv);
+                is_touched[lc] = 0;
+                glm::ivec3 l{lc & 7, (lc >> 3) & 7, lc >> 6};
+                results[id].push_back({(origin >> voxel_model::chunk_bits) + l, std::move(c)});
+            }
+            touched.clear();
         }
-    };
-    std::vector<std::thread> pool;
-    for (unsigned i = 1; i < threads; ++i) pool.emplace_back(worker, i);
-    worker(0);
-    for (auto& t : pool) t.join();
-    if (failure) std::rethrow_exception(failure);
+    });
 
     voxel_model model;
     std::size_t total = 0;

@@ -7,7 +7,7 @@
  *    set exactly (first or last slab), so float rounding at the box never loses a ray;
  *  - axes with a zero direction never step (their crossing t is +inf) and no division by
  *    zero reaches a result: GLSL leaves x/0 undefined;
- *  - rays with NaN/Inf in origin, direction or tmin, NaN tmax, a zero direction or
+ *  - rays with NaN/Inf in origin, direction or tmin, NaN tmax, a zero (or denormal) direction or
  *    tmin > tmax are misses. tmax = +inf is fine.
  * Axes that reach a boundary at the same t step together (see vx_dda_advance).
  * Per-lane code has no branches: it runs unchanged on SIMD lanes. */
@@ -31,11 +31,18 @@ VX_STRUCT(vx_slab)
     vx_i32 step;
 VX_END_STRUCT(vx_slab)
 
+/* An axis moves when |d| is at least the smallest normal float: then 1/d is finite, so
+ * no crossing t is ever NaN (inf * 0), and every step moves at least one axis: the walk
+ * ends after at most ex + ey + ez steps, with no iteration cap. Denormal components count
+ * as zero, identically on devices that flush them and on those that do not. */
+#define VX_MIN_NORMAL 1.17549435e-38f
+#define vx_moves(d) ((d) >= VX_MIN_NORMAL || (d) <= -VX_MIN_NORMAL)
+
 VX_FN vx_slab vx_slab_make(vx_f32 o, vx_f32 d, float extent) {
     vx_slab s;
-    vx_mask moving = d != 0.0f;
+    vx_mask moving = vx_moves(d);
     s.inv = vx_sel(moving, 1.0f / vx_sel(moving, d, 1.0f), 0.0f);
-    s.step = vx_sel(d > 0.0f, 1, vx_sel(d < 0.0f, -1, 0));
+    s.step = vx_sel(moving, vx_sel(d > 0.0f, 1, -1), 0);
     vx_f32 ta = (0.0f - o) * s.inv;
     vx_f32 tb = (extent - o) * s.inv;
     vx_mask inside = o >= 0.0f && o < extent;
@@ -65,7 +72,7 @@ VX_FN vx_dda vx_dda_begin(vx_ray r, float gx, float gy, float gz, int ex, int ey
     vx_mask valid = vx_is_finite(r.ox) && vx_is_finite(r.oy) && vx_is_finite(r.oz) &&
                     vx_is_finite(r.dx) && vx_is_finite(r.dy) && vx_is_finite(r.dz) &&
                     vx_is_finite(r.tmin) && !vx_is_nan(r.tmax) && r.tmin <= r.tmax &&
-                    (r.dx != 0.0f || r.dy != 0.0f || r.dz != 0.0f) && ex > 0 && ey > 0 && ez > 0;
+                    (vx_moves(r.dx) || vx_moves(r.dy) || vx_moves(r.dz)) && ex > 0 && ey > 0 && ez > 0;
     vx_slab sx = vx_slab_make(d.ox, r.dx, vx_i2f(ex));
     vx_slab sy = vx_slab_make(d.oy, r.dy, vx_i2f(ey));
     vx_slab sz = vx_slab_make(d.oz, r.dz, vx_i2f(ez));
@@ -125,9 +132,9 @@ VX_FN vx_dda vx_dda_advance(vx_dda d, vx_mask go, int ex, int ey, int ez) {
              vx_sel(my, vx_sel(d.sy > 0, VX_FACE_NEG_Y, VX_FACE_POS_Y),
              vx_sel(mz, vx_sel(d.sz > 0, VX_FACE_NEG_Z, VX_FACE_POS_Z), d.face)));
 
-    vx_mask out = d.cx < 0 || d.cy < 0 || d.cz < 0 || d.cx >= ex || d.cy >= ey || d.cz >= ez ||
+    vx_mask leaves = d.cx < 0 || d.cy < 0 || d.cz < 0 || d.cx >= ex || d.cy >= ey || d.cz >= ez ||
                   tnext > d.tmax;
-    d.status = vx_sel(go && out, VX_STATUS_MISS, d.status);
+    d.status = vx_sel(go && leaves, VX_STATUS_MISS, d.status);
     d.t = vx_sel(go, vx_fmax(d.t, tnext), d.t);
     d.steps = d.steps + vx_sel(go, 1u, 0u);
     return d;

@@ -26,12 +26,12 @@ VX_FN vx_dense_grid vx_dense_load(VX_BLOB blob) {
 }
 
 /* Word offset of the chunk record holding cell (cx, cy, cz), or VX_DG_EMPTY_CHUNK.
- * Lanes outside `active` read word 0 instead (always in bounds). */
-VX_FN vx_u32 vx_dense_chunk(VX_BLOB blob, vx_dense_grid g, vx_i32 cx, vx_i32 cy, vx_i32 cz, vx_mask active) {
+ * Lanes outside `live` read word 0 instead (always in bounds). */
+VX_FN vx_u32 vx_dense_chunk(VX_BLOB blob, vx_dense_grid g, vx_i32 cx, vx_i32 cy, vx_i32 cz, vx_mask live) {
     vx_u32 slot = vx_i2u(cx >> VX_DG_CHUNK_BITS) + vx_i2u(cy >> VX_DG_CHUNK_BITS) * g.chunks_x +
                   vx_i2u(cz >> VX_DG_CHUNK_BITS) * g.chunks_xy;
-    vx_u32 entry = vx_gather(blob, vx_sel(active, g.table + slot, 0u));
-    vx_mask present = active && entry != VX_DG_EMPTY_CHUNK;
+    vx_u32 entry = vx_gather(blob, vx_sel(live, g.table + slot, 0u));
+    vx_mask present = live && entry != VX_DG_EMPTY_CHUNK;
     return vx_sel(present, g.data + entry * VX_DG_CHUNK_WORDS, VX_DG_EMPTY_CHUNK);
 }
 
@@ -41,14 +41,14 @@ VX_FN vx_u32 vx_dense_local(vx_i32 cx, vx_i32 cy, vx_i32 cz) {
 
 /* One step: a hit if the current cell is solid, else move to the next cell. */
 VX_FN vx_dda vx_dense_step(VX_BLOB blob, vx_dense_grid g, vx_dda d) {
-    vx_mask active = d.status == VX_STATUS_ACTIVE;
-    vx_u32 chunk = vx_dense_chunk(blob, g, d.cx, d.cy, d.cz, active);
+    vx_mask live = d.status == VX_STATUS_ACTIVE;
+    vx_u32 chunk = vx_dense_chunk(blob, g, d.cx, d.cy, d.cz, live);
     vx_mask present = chunk != VX_DG_EMPTY_CHUNK;
     vx_u32 local = vx_dense_local(d.cx, d.cy, d.cz);
     vx_u32 bits = vx_gather(blob, vx_sel(present, chunk + (local >> 5u), 0u));
     vx_mask solid = present && ((bits >> (local & 31u)) & 1u) != 0u;
     d.status = vx_sel(solid, VX_STATUS_HIT, d.status);
-    return vx_dda_advance(d, active && !solid, g.ex, g.ey, g.ez);
+    return vx_dda_advance(d, live && !solid, g.ex, g.ey, g.ez);
 }
 
 VX_FN vx_hit vx_dense_finish(VX_BLOB blob, vx_dense_grid g, vx_dda d) {

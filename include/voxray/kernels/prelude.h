@@ -82,19 +82,15 @@ static inline float vx_fmax(float a, float b) { return a > b ? a : b; }
 #define vx_floor(x) floor(x)
 #define vx_any(m) (m)
 /* Spelled like the C++ lanes (kernels/cpu_lanes.hpp), not as GLSL min/max: those leave
- * the result for a NaN operand undefined and, compiled to LLVM maxnum (lavapipe), may
- * return the other zero of (+0, -0), so t = -0 on the GPU where the CPU says +0. */
+ * the result for a NaN operand undefined (lavapipe returns the other operand, the C++
+ * select returns b), so a NaN would steer the GPU and the CPU down different cells. */
 float vx_fmin(float a, float b) { return a < b ? a : b; }
 float vx_fmax(float a, float b) { return a > b ? a : b; }
 /* Structure data, rays and hits are reached by buffer device address: no descriptor
  * range limit (lavapipe's maxStorageBufferRange is 128 MiB) applies to them. */
 layout(buffer_reference, std430, buffer_reference_align = 4) readonly buffer vx_words { uint w[]; };
-/* Words that are plain identifiers in C++ and OpenCL C but keywords (`out`) or reserved
- * (`active`) in GLSL 4.50, renamed so kernel code may use them as variable names. Code
- * after the kernels (the Vulkan entry point) must not use them as qualifiers. Prefer
- * other names in new kernel code. */
-#define out vx_glsl_out
-#define active vx_glsl_active
+/* Kernel code must not use GLSL keywords or reserved words (out, active, input...) or
+ * OpenCL C ones (local, global, kernel...) as names. */
 
 #else /* C++: the including file (cpu_lanes.hpp) supplies types and helpers. */
 #define VX_DIALECT_CPP 1

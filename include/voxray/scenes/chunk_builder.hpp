@@ -5,15 +5,13 @@
 #pragma once
 #include <algorithm>
 #include <atomic>
-#include <exception>
 #include <memory>
-#include <mutex>
-#include <thread>
 #include <utility>
 #include <vector>
 
 #include <glm/vec3.hpp>
 
+#include "voxray/model/build_threads.hpp"
 #include "voxray/model/voxel_model.hpp"
 
 namespace voxray::scenes {
@@ -28,40 +26,26 @@ struct chunk_column_job {
 
 template <class Fill>
 void build_chunks(voxel_model& model, const std::vector<chunk_column_job>& jobs, unsigned threads, Fill&& fill) {
-    threads = threads ? threads : std::max(1u, std::thread::hardware_concurrency());
-    threads = std::max(1u, std::min<unsigned>(threads, unsigned(jobs.size())));
+    threads = resolve_build_threads(threads, jobs.size());
     struct placed {
         glm::ivec3 coord;
         std::unique_ptr<voxel_model::chunk> data;
     };
     std::vector<std::vector<placed>> results(threads);
     std::atomic<std::size_t> next{0};
-    std::exception_ptr failure;
-    std::mutex failure_mutex;
-    auto worker = [&](unsigned id) {
-        try {
-            std::unique_ptr<voxel_model::chunk> spare;
-            for (std::size_t k; (k = next.fetch_add(1)) < jobs.size();) {
-                auto& job = jobs[k];
-                for (int cz = job.cz0; cz <= job.cz1; ++cz) {
-                    if (!spare) spare = std::make_unique<voxel_model::chunk>();
-                    glm::ivec3 cc{job.cx, job.cy, cz};
-                    fill(cc, *spare);
-                    bool any = std::any_of(spare->voxels.begin(), spare->voxels.end(), [](auto v) { return v != 0; });
-                    if (any) results[id].push_back({cc, std::move(spare)});
-                }
+    run_build_threads(threads, [&](unsigned id) {
+        std::unique_ptr<voxel_model::chunk> spare;
+        for (std::size_t k; (k = next.fetch_add(1)) < jobs.size();) {
+            auto& job = jobs[k];
+            for (int cz = job.cz0; cz <= job.cz1; ++cz) {
+                if (!spare) spare = std::make_unique<voxel_model::chunk>();
+                glm::ivec3 cc{job.cx, job.cy, cz};
+                fill(cc, *spare);
+                bool any = std::any_of(spare->voxels.begin(), spare->voxels.end(), [](auto v) { return v != 0; });
+                if (any) results[id].push_back({cc, std::move(spare)});
             }
-        } catch (...) {
-            std::lock_guard lock(failure_mutex);
-            if (!failure) failure = std::current_exception();
-            next = jobs.size();
         }
-    };
-    std::vector<std::thread> pool;
-    for (unsigned i = 1; i < threads; ++i) pool.emplace_back(worker, i);
-    worker(0);
-    for (auto& t : pool) t.join();
-    if (failure) std::rethrow_exception(failure);
+    });
     std::size_t total = model.chunk_count();
     for (auto& r : results) total += r.size();
     model.reserve_chunks(total);

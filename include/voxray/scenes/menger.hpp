@@ -45,8 +45,7 @@ inline voxel_model make_menger(const menger_options& opt = {}) {
     const int size = cells * opt.cell;
 
     // Per coordinate, a bit per level whose digit is 1; a cell is removed iff two
-    // of its three masks share a bit. Bit `level-1` (the top digit) is kept
-    // separately for colour.
+    // of its three masks share a bit. The top digit (0..2) is kept for colour.
     std::vector<std::uint8_t> ones(std::size_t(size), 0);
     std::vector<std::uint8_t> top(std::size_t(size), 0);
     for (int x = 0; x < size; ++x) {

@@ -18,10 +18,10 @@
 #pragma once
 #include <algorithm>
 #include <cstdint>
-#include <thread>
 #include <vector>
 
 #include "voxray/core/error.hpp"
+#include "voxray/model/build_threads.hpp"
 #include "voxray/model/voxel_model.hpp"
 #include "voxray/scenes/chunk_builder.hpp"
 #include "voxray/scenes/noise.hpp"
@@ -81,7 +81,7 @@ inline voxel_model make_terrain(const terrain_options& opt = {}) {
     if (opt.skin < 1 || opt.skin > 64) fail("terrain skin ", opt.skin, " is outside 1..64");
     const int n = opt.size;
     const int max_height = n / 5, sea = max_height * 9 / 50;
-    unsigned threads = opt.threads ? opt.threads : std::max(1u, std::thread::hardware_concurrency());
+    unsigned threads = resolve_build_threads(opt.threads, std::size_t(n));
 
     // Heightfield (2-D, n^2 shorts), rows in parallel.
     std::vector<std::int16_t> height(std::size_t(n) * n);
@@ -99,10 +99,7 @@ inline voxel_model make_terrain(const terrain_options& opt = {}) {
                     height[std::size_t(y) * n + x] = std::int16_t(std::clamp(3.0 + std::floor(h), 1.0, double(max_height)));
                 }
         };
-        std::vector<std::thread> pool;
-        for (unsigned i = 1; i < threads; ++i) pool.emplace_back(rows, i);
-        rows(0);
-        for (auto& t : pool) t.join();
+        run_build_threads(threads, rows);
     }
     auto H = [&](int x, int y) { return int(height[std::size_t(y) * n + x]); };
     // Lowest solid voxel of a column: the skin, or one above the lowest neighbour.

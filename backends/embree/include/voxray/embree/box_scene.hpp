@@ -118,8 +118,8 @@ public:
                     continue;
                 }
                 const box& b = boxes_[pk.rayhit.hit.primID[i]];
-                float t = ctx.tfar[i] + pk.shift[i] + 0.0f;  // the exact bound is the hit's t
-                h = make_hit(t, b, std::uint32_t(pk.rayhit.hit.u[i]), ctx.steps[i]);
+                // The exact bound is the hit's t (in Embree's frame).
+                h = make_hit(pk.t(i, ctx.tfar[i]), b, std::uint32_t(pk.rayhit.hit.u[i]), ctx.steps[i]);
             }
         });
     }
@@ -140,7 +140,7 @@ public:
                     h.steps = ctx.steps[i];
                     continue;
                 }
-                h = make_hit(ctx.t[i] + pk.shift[i] + 0.0f, boxes_[ctx.prim[i]], ctx.face[i], ctx.steps[i]);
+                h = make_hit(pk.t(i, ctx.t[i]), boxes_[ctx.prim[i]], ctx.face[i], ctx.steps[i]);
             }
         });
     }
@@ -187,7 +187,10 @@ private:
                 continue;
             }
             bool on_plane = starts_on_plane(p, r.direction);
-            pk.load(i, r, p, on_plane);
+            if (!pk.load(i, r, p, on_plane, bounds_)) {
+                hits[i] = miss_record();
+                continue;
+            }
             ctx.tfar[i] = pk.rayhit.ray.tfar[i];
             if (on_plane && entry_at_start(pk, i, r.tmin, hits[i])) {
                 pk.park(i);

@@ -60,6 +60,7 @@ class quad_scene {
 public:
     explicit quad_scene(const voxel_model& model, device dev = device()) : dev_(std::move(dev)) {
         auto start = std::chrono::steady_clock::now();
+        bounds_ = model.bounds();
         for_each_voxel_exposure(model, [&](glm::ivec3 p, std::uint8_t material, std::uint8_t exposed) {
             for (std::uint32_t f = 0; f < 6; ++f)
                 if (exposed & (1u << f)) faces_.push_back({p, f | (std::uint32_t(material) << 8)});
@@ -199,7 +200,7 @@ private:
             glm::vec3 p = start_point(r);
             bool on_plane = starts_on_plane(p, r.direction);
             pk.boundary |= on_plane;
-            pk.load(i, r, p, on_plane);
+            if (!pk.load(i, r, p, on_plane, bounds_)) hits[i] = miss_record();
         }
         return pk.any_valid();
     }
@@ -252,6 +253,7 @@ private:
     device dev_;
     scene_handle scene_;
     std::vector<face_record> faces_;  // primitive id -> voxel, face, material
+    box3i bounds_;
     std::size_t embree_bytes_ = 0;
     double build_seconds_ = 0.0;
 };

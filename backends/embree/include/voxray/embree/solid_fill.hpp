@@ -20,10 +20,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
-#include <exception>
 #include <limits>
-#include <mutex>
-#include <thread>
 #include <vector>
 
 #include <embree3/rtcore.h>
@@ -32,6 +29,7 @@
 #include "voxray/embree/device.hpp"
 #include "voxray/io/mesh.hpp"
 #include "voxray/io/voxelizer.hpp"
+#include "voxray/model/build_threads.hpp"
 #include "voxray/model/voxel_model.hpp"
 
 namespace voxray::embree {
@@ -48,6 +46,7 @@ inline std::uint64_t fill_interior(voxel_model& model, const io::triangle_mesh& 
                                    const fill_options& opt = {}) {
     if (opt.axis < 0 || opt.axis > 2) fail("fill_interior: axis ", opt.axis, " is not 0, 1 or 2");
     if (mesh.triangles.empty()) fail("fill_interior: the mesh has no triangles");
+    mesh.validate();
     auto grid = io::make_grid_map(mesh.bounds(), resolution);
 
     // The scene lives in voxel space, so rays and spans need no conversion.
@@ -83,59 +82,45 @@ inline std::uint64_t fill_interior(voxel_model& model, const io::triangle_mesh& 
     struct span {
         int cu, cv, first, last;  // inclusive voxel range along w
     };
-    unsigned threads = opt.threads ? opt.threads : std::max(1u, std::thread::hardware_concurrency());
-    threads = std::max(1u, std::min<unsigned>(threads, unsigned(nv)));
+    unsigned threads = resolve_build_threads(opt.threads, std::size_t(nv));
     std::vector<std::vector<span>> spans(threads);
-    std::exception_ptr failure;
-    std::mutex failure_mutex;
-
-    auto worker = [&](unsigned id) {
-        try {
-            RTCIntersectContext ctx;
-            std::vector<float> hits;
-            for (int cv = int(id); cv < nv; cv += int(threads))
-                for (int cu = 0; cu < nu; ++cu) {
-                    hits.clear();
-                    float tnear = 0.0f;
-                    for (;;) {
-                        RTCRayHit rh{};
-                        float org[3];
-                        org[u] = float(cu) + 0.5f, org[v] = float(cv) + 0.5f, org[w] = -1.0f;
-                        rh.ray.org_x = org[0], rh.ray.org_y = org[1], rh.ray.org_z = org[2];
-                        float dir[3] = {0, 0, 0};
-                        dir[w] = 1.0f;
-                        rh.ray.dir_x = dir[0], rh.ray.dir_y = dir[1], rh.ray.dir_z = dir[2];
-                        rh.ray.tnear = tnear;
-                        rh.ray.tfar = float(nw) + 2.0f;
-                        rh.ray.mask = ~0u;
-                        rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-                        rtcInitIntersectContext(&ctx);
-                        rtcIntersect1(scene.get(), &ctx, &rh);
-                        if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) break;
-                        hits.push_back(rh.ray.tfar - 1.0f);  // w coordinate of the crossing
-                        // Past this hit by more than float rounding at this distance.
-                        tnear = rh.ray.tfar + std::max(1e-4f, rh.ray.tfar * 0x1.0p-18f);
-                        // Each triangle is crossed at most once, so more hits mean a bug.
-                        if (hits.size() > mesh.triangles.size())
-                            fail("fill_interior: column (", cu, ", ", cv, ") reports more crossings than triangles");
-                    }
-                    for (std::size_t i = 0; i + 1 < hits.size(); i += 2) {
-                        // Voxel k's centre k + 0.5 within [hits[i], hits[i+1]].
-                        double f = std::ceil(double(hits[i]) - 0.5), l = std::floor(double(hits[i + 1]) - 0.5);
-                        f = std::max(f, 0.0), l = std::min(l, double(nw - 1));
-                        if (f <= l) spans[id].push_back({cu, cv, int(f), int(l)});
-                    }
+    run_build_threads(threads, [&](unsigned id) {
+        RTCIntersectContext ctx;
+        std::vector<float> hits;
+        for (int cv = int(id); cv < nv; cv += int(threads))
+            for (int cu = 0; cu < nu; ++cu) {
+                hits.clear();
+                float tnear = 0.0f;
+                for (;;) {
+                    RTCRayHit rh{};
+                    float org[3];
+                    org[u] = float(cu) + 0.5f, org[v] = float(cv) + 0.5f, org[w] = -1.0f;
+                    rh.ray.org_x = org[0], rh.ray.org_y = org[1], rh.ray.org_z = org[2];
+                    float dir[3] = {0, 0, 0};
+                    dir[w] = 1.0f;
+                    rh.ray.dir_x = dir[0], rh.ray.dir_y = dir[1], rh.ray.dir_z = dir[2];
+                    rh.ray.tnear = tnear;
+                    rh.ray.tfar = float(nw) + 2.0f;
+                    rh.ray.mask = ~0u;
+                    rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+                    rtcInitIntersectContext(&ctx);
+                    rtcIntersect1(scene.get(), &ctx, &rh);
+                    if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) break;
+                    hits.push_back(rh.ray.tfar - 1.0f);  // w coordinate of the crossing
+                    // Past this hit by more than float rounding at this distance.
+                    tnear = rh.ray.tfar + std::max(1e-4f, rh.ray.tfar * 0x1.0p-18f);
+                    // Each triangle is crossed at most once, so more hits mean a bug.
+                    if (hits.size() > mesh.triangles.size())
+                        fail("fill_interior: column (", cu, ", ", cv, ") reports more crossings than triangles");
                 }
-        } catch (...) {
-            std::lock_guard lock(failure_mutex);
-            if (!failure) failure = std::current_exception();
-        }
-    };
-    std::vector<std::thread> pool;
-    for (unsigned i = 1; i < threads; ++i) pool.emplace_back(worker, i);
-    worker(0);
-    for (auto& t : pool) t.join();
-    if (failure) std::rethrow_exception(failure);
+                for (std::size_t i = 0; i + 1 < hits.size(); i += 2) {
+                    // Voxel k's centre k + 0.5 within [hits[i], hits[i+1]].
+                    double f = std::ceil(double(hits[i]) - 0.5), l = std::floor(double(hits[i + 1]) - 0.5);
+                    f = std::max(f, 0.0), l = std::min(l, double(nw - 1));
+                    if (f <= l) spans[id].push_back({cu, cv, int(f), int(l)});
+                }
+            }
+    });
 
     std::uint64_t added = 0;
     for (auto& list : spans)

@@ -51,7 +51,8 @@ inline voxel_entry enter_voxel(glm::vec3 o, glm::vec3 d, float tnear, float tfar
         if (t_out < t1) t1 = t_out;
     }
     // Leaving exactly at tnear means the ray starts on v's far side, moving away: no hit.
-    if (!(t0 <= t1) || !(t1 > tnear) || !(t0 <= tfar)) return {};
+    // An entry at t = inf (a denormal direction) is no entry.
+    if (!(t0 <= t1) || !(t1 > tnear) || !(t0 <= tfar) || !(t0 < std::numeric_limits<float>::infinity())) return {};
     // A start point on v's near boundary (or a rounding hair inside it) that the floor rule
     // put in the neighbour is an entry at tnear through the face that was crossed.
     return {true, t0 > tnear ? t0 : tnear, face};

@@ -92,7 +92,8 @@ private:
         // Coherent memory only, so no flush/invalidate calls are needed. The host reads
         // hits, and reading uncached (write-combined) memory is very slow: readback
         // buffers map directly only where the memory is also cached.
-        constexpr VkMemoryPropertyFlags host = VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT;
+        constexpr VkMemoryPropertyFlags host =
+            VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT;
         constexpr VkMemoryPropertyFlags local = VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT;
         constexpr VkMemoryPropertyFlags cached = VK_MEMORY_PROPERTY_HOST_CACHED_BIT;
         const auto& mem = ctx.memory();
@@ -142,7 +143,8 @@ private:
     VkResult allocate(std::uint32_t type, const VkMemoryRequirements& req, bool device_address) {
         auto flags = vk_struct<VkMemoryAllocateFlagsInfo>(VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_FLAGS_INFO);
         flags.flags = VK_MEMORY_ALLOCATE_DEVICE_ADDRESS_BIT;
-        auto info = vk_struct<VkMemoryAllocateInfo>(VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO, device_address ? &flags : nullptr);
+        auto info = vk_struct<VkMemoryAllocateInfo>(VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO,
+                                                    device_address ? &flags : nullptr);
         info.allocationSize = req.size;
         info.memoryTypeIndex = type;
         VkResult r = vkAllocateMemory(device_, &info, nullptr, &memory_);

@@ -30,7 +30,8 @@ inline std::vector<VkExtensionProperties> device_extensions(VkPhysicalDevice pd)
     std::uint32_t n = 0;
     vk_check(vkEnumerateDeviceExtensionProperties(pd, nullptr, &n, nullptr), "vkEnumerateDeviceExtensionProperties");
     std::vector<VkExtensionProperties> list(n);
-    vk_check(vkEnumerateDeviceExtensionProperties(pd, nullptr, &n, list.data()), "vkEnumerateDeviceExtensionProperties");
+    vk_check(vkEnumerateDeviceExtensionProperties(pd, nullptr, &n, list.data()),
+             "vkEnumerateDeviceExtensionProperties");
     list.resize(n);
     return list;
 }
@@ -125,7 +126,8 @@ private:
             fail("vulkan: the Vulkan loader supports API ", version_string(loader), ", voxray needs 1.2");
 
         std::uint32_t n = 0;
-        vk_check(vkEnumerateInstanceExtensionProperties(nullptr, &n, nullptr), "vkEnumerateInstanceExtensionProperties");
+        vk_check(vkEnumerateInstanceExtensionProperties(nullptr, &n, nullptr),
+                 "vkEnumerateInstanceExtensionProperties");
         std::vector<VkExtensionProperties> available(n);
         vk_check(vkEnumerateInstanceExtensionProperties(nullptr, &n, available.data()),
                  "vkEnumerateInstanceExtensionProperties");
@@ -146,7 +148,12 @@ private:
             info.ppEnabledExtensionNames = &portability;
         }
 #endif
-        vk_check(vkCreateInstance(&info, nullptr, &instance_), "vkCreateInstance");
+        VkResult r = vkCreateInstance(&info, nullptr, &instance_);
+        // The loader's answer when it finds no driver (ICD) at all.
+        if (r == VK_ERROR_INCOMPATIBLE_DRIVER)
+            fail("vulkan: vkCreateInstance failed: VK_ERROR_INCOMPATIBLE_DRIVER: no Vulkan 1.2 driver found; "
+                 "install one (for a CPU device, Mesa's lavapipe: Debian package mesa-vulkan-drivers)");
+        vk_check(r, "vkCreateInstance");
     }
 
     void choose_device(const vulkan_options& options) {
@@ -180,7 +187,8 @@ private:
         }
         if (!best) {
             if (!wanted.empty())
-                fail("vulkan: no usable device whose name contains \"", wanted, "\" (from ", source, "); devices:", seen);
+                fail("vulkan: no usable device whose name contains \"", wanted, "\" (from ", source,
+                     "); devices:", seen);
             fail("vulkan: no usable device (voxray needs Vulkan 1.2 with bufferDeviceAddress and a compute queue); "
                  "devices:", seen);
         }
@@ -190,12 +198,14 @@ private:
     }
 
     void read_limits() {
-        auto m3 = vk_struct<VkPhysicalDeviceMaintenance3Properties>(VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_MAINTENANCE_3_PROPERTIES);
+        auto m3 = vk_struct<VkPhysicalDeviceMaintenance3Properties>(
+            VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_MAINTENANCE_3_PROPERTIES);
         auto props = vk_struct<VkPhysicalDeviceProperties2>(VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2, &m3);
 #ifdef VK_VERSION_1_3
         // maxBufferSize exists only with maintenance4 (core in 1.3); chaining the struct
         // on a device without it would be invalid.
-        auto m4 = vk_struct<VkPhysicalDeviceMaintenance4Properties>(VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_MAINTENANCE_4_PROPERTIES);
+        auto m4 = vk_struct<VkPhysicalDeviceMaintenance4Properties>(
+            VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_MAINTENANCE_4_PROPERTIES);
         bool has_m4 = chosen_.properties.apiVersion >= VK_API_VERSION_1_3 ||
                       has_extension(device_extensions(chosen_.handle), "VK_KHR_maintenance4");
         if (has_m4) m3.pNext = &m4;

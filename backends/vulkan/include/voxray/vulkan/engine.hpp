@@ -38,6 +38,7 @@ inline constexpr VkDeviceSize staging_chunk_bytes = VkDeviceSize(64) << 20;
 
 static_assert(std::is_trivially_copyable_v<ray> && std::is_trivially_copyable_v<hit>,
               "rays and hits are copied to and from device memory as bytes");
+static_assert(sizeof(ray) == sizeof(hit), "ray and hit buffers are sized alike");
 
 template <class Kernel>
 class engine {
@@ -133,12 +134,21 @@ private:
         hits_ = buffer();
         rays_staging_ = buffer();
         hits_staging_ = buffer();
-        rays_ = buffer(*ctx_, bytes, buffer_role::storage_upload, mapped, "ray buffer");
-        hits_ = buffer(*ctx_, bytes, buffer_role::storage_readback, mapped, "hit buffer");
-        if (!rays_.mapped())
-            rays_staging_ = buffer(*ctx_, bytes, buffer_role::staging_upload, true, "ray staging buffer");
-        if (!hits_.mapped())
-            hits_staging_ = buffer(*ctx_, bytes, buffer_role::staging_readback, true, "hit staging buffer");
+        try {
+            rays_ = buffer(*ctx_, bytes, buffer_role::storage_upload, mapped, "ray buffer");
+            hits_ = buffer(*ctx_, bytes, buffer_role::storage_readback, mapped, "hit buffer");
+            if (!rays_.mapped())
+                rays_staging_ = buffer(*ctx_, bytes, buffer_role::staging_upload, true, "ray staging buffer");
+            if (!hits_.mapped())
+                hits_staging_ = buffer(*ctx_, bytes, buffer_role::staging_readback, true, "hit staging buffer");
+        } catch (...) {
+            // All or nothing: a ray buffer without its hit buffer must not look ready.
+            rays_ = buffer();
+            hits_ = buffer();
+            rays_staging_ = buffer();
+            hits_staging_ = buffer();
+            throw;
+        }
     }
 
     void trace_slice(std::span<const ray> rays, std::span<hit> hits, std::uint32_t mode) {
