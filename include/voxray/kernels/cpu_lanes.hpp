@@ -64,9 +64,9 @@ using vx_mask = vx_i32;  // all ones or zero per lane, as vector comparisons pro
 inline std::uint32_t vx_load(const std::uint32_t* b, std::uint32_t i) { return b[i]; }
 // Per-lane load. Indices are words; blobs are limited to 2^31 words (8 GiB) for this.
 inline vx_u32 vx_gather(const std::uint32_t* b, vx_u32 i) {
-#if defined(__AVX512F__)
+#if defined(__AVX512F__) && !defined(VOXRAY_SCALAR_GATHER)
     return (vx_u32)_mm512_i32gather_epi32((__m512i)i, reinterpret_cast<const int*>(b), 4);
-#elif defined(__AVX2__)
+#elif defined(__AVX2__) && !defined(VOXRAY_SCALAR_GATHER)
     return (vx_u32)_mm256_i32gather_epi32(reinterpret_cast<const int*>(b), (__m256i)i, 4);
 #else
     vx_u32 r;
@@ -98,9 +98,15 @@ inline vx_f32 vx_fmax(vx_f32 a, vx_f32 b) { return a > b ? a : b; }
 inline vx_f32 vx_fmin(vx_f32 a, float b) { return a < b ? a : b; }
 inline vx_f32 vx_fmax(vx_f32 a, float b) { return a > b ? a : b; }
 inline bool vx_any(vx_i32 m) {
+#if defined(__AVX512F__)
+    return _mm512_test_epi32_mask((__m512i)m, (__m512i)m) != 0;
+#elif defined(__AVX__)
+    return _mm256_movemask_ps((__m256)m) != 0;
+#else
     for (int k = 0; k < width; ++k)
         if (m[k]) return true;
     return false;
+#endif
 }
 
 #include "voxray/kernels/ray.h"

@@ -139,3 +139,20 @@ VX_FN vx_dda vx_dda_advance(vx_dda d, vx_mask go, int ex, int ey, int ez) {
     d.steps = d.steps + vx_sel(go, 1u, 0u);
     return d;
 }
+
+/* Per lane: a where m is set, else b. The CPU's SIMD stream uses it to start new rays in
+ * lanes whose ray has finished. */
+VX_FN vx_dda vx_dda_select(vx_mask m, vx_dda a, vx_dda b) {
+    vx_dda d;
+    d.ox = vx_sel(m, a.ox, b.ox); d.oy = vx_sel(m, a.oy, b.oy); d.oz = vx_sel(m, a.oz, b.oz);
+    d.ix = vx_sel(m, a.ix, b.ix); d.iy = vx_sel(m, a.iy, b.iy); d.iz = vx_sel(m, a.iz, b.iz);
+    d.sx = vx_sel(m, a.sx, b.sx); d.sy = vx_sel(m, a.sy, b.sy); d.sz = vx_sel(m, a.sz, b.sz);
+    d.cx = vx_sel(m, a.cx, b.cx); d.cy = vx_sel(m, a.cy, b.cy); d.cz = vx_sel(m, a.cz, b.cz);
+    d.nx = vx_sel(m, a.nx, b.nx); d.ny = vx_sel(m, a.ny, b.ny); d.nz = vx_sel(m, a.nz, b.nz);
+    d.t = vx_sel(m, a.t, b.t);
+    d.tmax = vx_sel(m, a.tmax, b.tmax);
+    d.face = vx_sel(m, a.face, b.face);
+    d.status = vx_sel(m, a.status, b.status);
+    d.steps = vx_sel(m, a.steps, b.steps);
+    return d;
+}

@@ -44,9 +44,11 @@ VX_FN vx_dda vx_dense_step(VX_BLOB blob, vx_dense_grid g, vx_dda d) {
     vx_mask live = d.status == VX_STATUS_ACTIVE;
     vx_u32 chunk = vx_dense_chunk(blob, g, d.cx, d.cy, d.cz, live);
     vx_mask present = chunk != VX_DG_EMPTY_CHUNK;
-    vx_u32 local = vx_dense_local(d.cx, d.cy, d.cz);
-    vx_u32 bits = vx_gather(blob, vx_sel(present, chunk + (local >> 5u), 0u));
-    vx_mask solid = present && ((bits >> (local & 31u)) & 1u) != 0u;
+    vx_u32 cell_bit = vx_dense_local(d.cx, d.cy, d.cz);
+    /* Most steps cross empty chunks: skip the occupancy load when no lane needs it. */
+    vx_u32 bits = vx_sel(present, 0u, 0u);
+    if (vx_any(present)) bits = vx_gather(blob, vx_sel(present, chunk + (cell_bit >> 5u), 0u));
+    vx_mask solid = present && ((bits >> (cell_bit & 31u)) & 1u) != 0u;
     d.status = vx_sel(solid, VX_STATUS_HIT, d.status);
     return vx_dda_advance(d, live && !solid, g.ex, g.ey, g.ez);
 }
@@ -55,25 +57,31 @@ VX_FN vx_hit vx_dense_finish(VX_BLOB blob, vx_dense_grid g, vx_dda d) {
     vx_hit h;
     vx_mask is_hit = d.status == VX_STATUS_HIT;
     vx_u32 chunk = vx_dense_chunk(blob, g, d.cx, d.cy, d.cz, is_hit);
-    vx_u32 local = vx_dense_local(d.cx, d.cy, d.cz);
+    vx_u32 cell_bit = vx_dense_local(d.cx, d.cy, d.cz);
     vx_mask present = chunk != VX_DG_EMPTY_CHUNK;
-    vx_u32 word = vx_gather(blob, vx_sel(present, chunk + VX_DG_OCCUPANCY_WORDS + (local >> 2u), 0u));
+    vx_u32 word = vx_gather(blob, vx_sel(present, chunk + VX_DG_OCCUPANCY_WORDS + (cell_bit >> 2u), 0u));
     h.t = vx_sel(is_hit, d.t, VX_INF);
     h.x = vx_sel(is_hit, d.cx + g.ox, 0);
     h.y = vx_sel(is_hit, d.cy + g.oy, 0);
     h.z = vx_sel(is_hit, d.cz + g.oz, 0);
     h.face = vx_sel(is_hit, d.face, VX_FACE_NONE);
-    h.material = vx_sel(present, (word >> ((local & 3u) * 8u)) & 255u, 0u);
+    h.material = vx_sel(present, (word >> ((cell_bit & 3u) * 8u)) & 255u, 0u);
     h.steps = d.steps;
     h.status = d.status;
     return h;
 }
 
-/* Closest hit; for the dense grid the first solid cell is also a valid any-hit answer. */
+VX_FN vx_dda vx_dense_begin(vx_dense_grid g, vx_ray r) {
+    return vx_dda_begin(r, vx_i2f(g.ox), vx_i2f(g.oy), vx_i2f(g.oz), g.ex, g.ey, g.ez);
+}
+
+/* Closest hit; for the dense grid the first solid cell is also a valid any-hit answer.
+ * The state machine (load, begin, step until not active, finish) is also driven directly
+ * by the CPU's SIMD stream, which refills finished lanes with new rays. */
 VX_FN vx_hit vx_dense_grid_trace(VX_BLOB blob, vx_ray r, uint mode) {
     VX_UNUSED(mode);
     vx_dense_grid g = vx_dense_load(blob);
-    vx_dda d = vx_dda_begin(r, vx_i2f(g.ox), vx_i2f(g.oy), vx_i2f(g.oz), g.ex, g.ey, g.ez);
+    vx_dda d = vx_dense_begin(g, r);
     while (vx_any(d.status == VX_STATUS_ACTIVE)) d = vx_dense_step(blob, g, d);
     return vx_dense_finish(blob, g, d);
 }

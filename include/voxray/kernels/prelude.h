@@ -51,15 +51,6 @@ typedef bool vx_mask;
  * sign of min(+0, -0) to the device, so t could be -0 on one backend and +0 on another. */
 static inline float vx_fmin(float a, float b) { return a < b ? a : b; }
 static inline float vx_fmax(float a, float b) { return a > b ? a : b; }
-/* Words that are plain identifiers in C++ and GLSL but address-space or function
- * qualifiers in OpenCL C (`uint local = ...` does not compile), renamed so kernel code may
- * use them as variable names. Code after the kernels (the OpenCL entry points) spells
- * qualifiers with underscores: __global, __kernel. Prefer other names in new kernel code. */
-#define local vx_cl_local
-#define global vx_cl_global
-#define constant vx_cl_constant
-#define private vx_cl_private
-#define kernel vx_cl_kernel
 
 #elif defined(VX_DIALECT_GLSL)
 #define VX_FN

@@ -1,5 +1,5 @@
 // The CPU backends: voxray::cpu runs the portable kernel on SIMD lanes (one ray per lane,
-// packets of kernels::simd_width rays), voxray::cpu_scalar runs the very same kernel one
+// kernels::simd_width lanes refilled as rays finish), voxray::cpu_scalar runs the very same kernel one
 // ray at a time. Both use every core.
 #pragma once
 #include <algorithm>
@@ -40,20 +40,68 @@ inline hit from_lane(const kernels::scalar::vx_hit& h) {
     return out;
 }
 
-// Traces up to simd_width rays as one packet. Unused lanes carry an invalid ray
-// (tmin > tmax), which the kernel turns into a miss before its first step.
+// The SIMD stream: `streams` groups of simd_width lanes, each lane tracing one ray through
+// the kernel's state machine. Whenever lanes finish, their hits are written out and the
+// lanes restart with the next rays, so no lane idles while another ray is still long (as
+// it would with fixed packets). Two independent groups are stepped in turn so that one
+// group's gathers overlap the other's arithmetic (a single group is latency-bound). Per
+// ray, the arithmetic is exactly the scalar kernel's: results are identical bit for bit.
 template <class Kernel>
-void trace_packet(const std::uint32_t* blob, const ray* rays, hit* hits, std::size_t n, std::uint32_t mode) {
+void trace_stream(const std::uint32_t* blob, const ray* rays, hit* hits, std::size_t count, std::uint32_t mode) {
     using namespace kernels::simd;
-    vx_ray r;
-    for (int k = 0; k < width; ++k) {
-        ray in = k < int(n) ? rays[k] : ray{glm::vec3(0), 1.0f, glm::vec3(1), 0.0f};
+    using K = kernel_lanes<Kernel>;
+    constexpr int W = kernels::simd_width;
+    constexpr int streams = 2;
+    const typename K::header g = K::load(blob);
+    // An invalid ray (tmin > tmax) is a miss before its first step: it fills idle lanes.
+    const ray idle{glm::vec3(0.0f), 1.0f, glm::vec3(1.0f), 0.0f};
+    auto load = [](vx_ray& r, int k, const ray& in) {
         r.ox[k] = in.origin.x; r.oy[k] = in.origin.y; r.oz[k] = in.origin.z; r.tmin[k] = in.tmin;
         r.dx[k] = in.direction.x; r.dy[k] = in.direction.y; r.dz[k] = in.direction.z; r.tmax[k] = in.tmax;
+    };
+    struct group {
+        typename K::state state;
+        vx_ray rays;
+        std::size_t lane_ray[W];
+        bool busy = true;
+    } groups[streams];
+    std::size_t next = 0;
+    for (auto& q : groups) {
+        for (int k = 0; k < W; ++k) {
+            q.lane_ray[k] = next < count ? next++ : count;
+            load(q.rays, k, q.lane_ray[k] < count ? rays[q.lane_ray[k]] : idle);
+        }
+        q.state = K::begin(g, q.rays, mode);
     }
-    vx_hit h = lanes::trace(Kernel{}, blob, r, mode);
-    for (int k = 0; k < int(n); ++k) {
-        hits[k] = from_lane({h.t[k], h.x[k], h.y[k], h.z[k], h.face[k], h.material[k], h.steps[k], h.status[k]});
+    // Writes out finished lanes and restarts them; false once the group has nothing left.
+    auto refill = [&](group& q) {
+        vx_mask finished = q.state.status != VX_STATUS_ACTIVE;
+        if (!vx_any(finished)) return true;
+        vx_hit h = K::finish(blob, g, q.state);
+        vx_mask restart = finished & 0;
+        bool busy = false;
+        for (int k = 0; k < W; ++k) {
+            if (finished[k] && q.lane_ray[k] < count) {
+                hits[q.lane_ray[k]] = from_lane({h.t[k], h.x[k], h.y[k], h.z[k], h.face[k], h.material[k], h.steps[k], h.status[k]});
+                q.lane_ray[k] = next < count ? next++ : count;
+                if (q.lane_ray[k] < count) {
+                    load(q.rays, k, rays[q.lane_ray[k]]);
+                    restart[k] = -1;
+                }
+            }
+            busy |= q.lane_ray[k] < count;
+        }
+        if (vx_any(restart)) q.state = K::select(restart, K::begin(g, q.rays, mode), q.state);
+        return busy;
+    };
+    for (bool any_busy = true; any_busy;) {
+        any_busy = false;
+        for (auto& q : groups) {
+            if (!q.busy) continue;
+            q.busy = refill(q);
+            if (q.busy) q.state = K::step(blob, g, q.state);
+            any_busy |= q.busy;
+        }
     }
 }
 
@@ -70,11 +118,10 @@ public:
         pool_->parallel_for(batches, [&](std::size_t b) {
             std::size_t begin = b * batch_rays, end = std::min(rays.size(), begin + batch_rays);
             if constexpr (Simd) {
-                for (std::size_t i = begin; i < end; i += kernels::simd_width)
-                    trace_packet<Kernel>(blob, &rays[i], &hits[i], std::min<std::size_t>(kernels::simd_width, end - i), mode);
+                trace_stream<Kernel>(blob, &rays[begin], &hits[begin], end - begin, mode);
             } else {
                 for (std::size_t i = begin; i < end; ++i)
-                    hits[i] = from_lane(kernels::scalar::lanes::trace(Kernel{}, blob, to_lane(rays[i]), mode));
+                    hits[i] = from_lane(kernels::scalar::kernel_lanes<Kernel>::trace(blob, to_lane(rays[i]), mode));
             }
         });
     }
