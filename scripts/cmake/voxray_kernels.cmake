@@ -6,8 +6,10 @@ set(VOXRAY_KERNEL_SOURCES
     layout/dense_grid_layout.h
     kernels/ray.h
     kernels/dda.h
-    kernels/dense_grid.h)
-set(VOXRAY_KERNEL_NAMES dense_grid)
+    kernels/dense_grid.h
+    layout/brickmap_layout.h
+    kernels/brickmap.h)
+set(VOXRAY_KERNEL_NAMES dense_grid brickmap)
 
 # voxray_flatten(OUTPUT <file> [CPP_STRING <name>] PREAMBLE <file> EPILOGUE <file>)
 # Writes PREAMBLE, the kernel sources and EPILOGUE into OUTPUT at build time; with

@@ -14,6 +14,7 @@
 
 #include "voxray/kernels/kernel_ids.hpp"
 #include "voxray/kernels/prelude.h"
+#include "voxray/layout/brickmap_layout.h"
 #include "voxray/layout/dense_grid_layout.h"
 
 namespace voxray::kernels {
@@ -50,6 +51,7 @@ inline bool vx_any(bool m) { return m; }
 #include "voxray/kernels/ray.h"
 #include "voxray/kernels/dda.h"
 #include "voxray/kernels/dense_grid.h"
+#include "voxray/kernels/brickmap.h"
 #include "voxray/kernels/cpu_dispatch.inc"
 }  // namespace scalar
 
@@ -112,6 +114,7 @@ inline bool vx_any(vx_i32 m) {
 #include "voxray/kernels/ray.h"
 #include "voxray/kernels/dda.h"
 #include "voxray/kernels/dense_grid.h"
+#include "voxray/kernels/brickmap.h"
 #include "voxray/kernels/cpu_dispatch.inc"
 }  // namespace simd
 

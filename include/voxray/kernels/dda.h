@@ -31,17 +31,19 @@ VX_STRUCT(vx_slab)
     vx_i32 step;
 VX_END_STRUCT(vx_slab)
 
-/* An axis moves when |d| is at least the smallest normal float: then 1/d is finite, so
- * no crossing t is ever NaN (inf * 0), and every step moves at least one axis: the walk
- * ends after at most ex + ey + ez steps, with no iteration cap. Denormal components count
- * as zero, identically on devices that flush them and on those that do not. */
-#define VX_MIN_NORMAL 1.17549435e-38f
-#define vx_moves(d) ((d) >= VX_MIN_NORMAL || (d) <= -VX_MIN_NORMAL)
+/* An axis moves when |d| >= 2^-120: then 1/d, even scaled by a cell size of up to 16
+ * (vx_dda_begin_scaled), is finite, so no crossing t is ever NaN (inf * 0), and every step
+ * moves at least one axis: the walk ends after at most ex + ey + ez steps, with no iteration
+ * cap. Smaller components (denormals included) count as zero, identically on devices that
+ * flush denormals and on those that do not. */
+#define VX_MIN_DIRECTION 7.52316385e-37f
+#define vx_moves(d) ((d) >= VX_MIN_DIRECTION || (d) <= -VX_MIN_DIRECTION)
 
-VX_FN vx_slab vx_slab_make(vx_f32 o, vx_f32 d, float extent) {
+/* `o` is already in cell units; `cell` scales 1/d into them (exact: a power of two). */
+VX_FN vx_slab vx_slab_make(vx_f32 o, vx_f32 d, float extent, float cell) {
     vx_slab s;
     vx_mask moving = vx_moves(d);
-    s.inv = vx_sel(moving, 1.0f / vx_sel(moving, d, 1.0f), 0.0f);
+    s.inv = vx_sel(moving, (1.0f / vx_sel(moving, d, 1.0f)) * cell, 0.0f);
     s.step = vx_sel(moving, vx_sel(d > 0.0f, 1, -1), 0);
     vx_f32 ta = (0.0f - o) * s.inv;
     vx_f32 tb = (extent - o) * s.inv;
@@ -63,19 +65,22 @@ VX_FN vx_f32 vx_dda_exit_t(vx_i32 c, vx_i32 step, vx_f32 o, vx_f32 inv) {
 }
 
 /* Sets up the walk of ray r (in world units) through a grid whose cell (0,0,0) has its
- * min corner at world position (gx, gy, gz) and that has (ex, ey, ez) cells. */
-VX_FN vx_dda vx_dda_begin(vx_ray r, float gx, float gy, float gz, int ex, int ey, int ez) {
+ * min corner at world position (gx, gy, gz), that has (ex, ey, ez) cells, each `cell`
+ * voxels wide (a power of two). Scaling by a power of two is exact, so a walk over coarse
+ * cells computes bit for bit the same t at a plane as a walk over voxels does. */
+VX_FN vx_dda vx_dda_begin_scaled(vx_ray r, float gx, float gy, float gz, int ex, int ey, int ez, float cell) {
     vx_dda d;
-    d.ox = r.ox - gx;
-    d.oy = r.oy - gy;
-    d.oz = r.oz - gz;
+    float to_cells = 1.0f / cell;
+    d.ox = (r.ox - gx) * to_cells;
+    d.oy = (r.oy - gy) * to_cells;
+    d.oz = (r.oz - gz) * to_cells;
     vx_mask valid = vx_is_finite(r.ox) && vx_is_finite(r.oy) && vx_is_finite(r.oz) &&
                     vx_is_finite(r.dx) && vx_is_finite(r.dy) && vx_is_finite(r.dz) &&
                     vx_is_finite(r.tmin) && !vx_is_nan(r.tmax) && r.tmin <= r.tmax &&
                     (vx_moves(r.dx) || vx_moves(r.dy) || vx_moves(r.dz)) && ex > 0 && ey > 0 && ez > 0;
-    vx_slab sx = vx_slab_make(d.ox, r.dx, vx_i2f(ex));
-    vx_slab sy = vx_slab_make(d.oy, r.dy, vx_i2f(ey));
-    vx_slab sz = vx_slab_make(d.oz, r.dz, vx_i2f(ez));
+    vx_slab sx = vx_slab_make(d.ox, r.dx, vx_i2f(ex), cell);
+    vx_slab sy = vx_slab_make(d.oy, r.dy, vx_i2f(ey), cell);
+    vx_slab sz = vx_slab_make(d.oz, r.dz, vx_i2f(ez), cell);
     d.ix = sx.inv; d.iy = sy.inv; d.iz = sz.inv;
     d.sx = sx.step; d.sy = sy.step; d.sz = sz.step;
 
@@ -91,9 +96,9 @@ VX_FN vx_dda vx_dda_begin(vx_ray r, float gx, float gy, float gz, int ex, int ey
     vx_mask az = through_face && !ax && !ay;
 
     vx_f32 tp = vx_sel(valid, tenter, 0.0f);
-    vx_f32 px = vx_sel(valid, d.ox + r.dx * tp, 0.0f);
-    vx_f32 py = vx_sel(valid, d.oy + r.dy * tp, 0.0f);
-    vx_f32 pz = vx_sel(valid, d.oz + r.dz * tp, 0.0f);
+    vx_f32 px = vx_sel(valid, d.ox + r.dx * to_cells * tp, 0.0f);
+    vx_f32 py = vx_sel(valid, d.oy + r.dy * to_cells * tp, 0.0f);
+    vx_f32 pz = vx_sel(valid, d.oz + r.dz * to_cells * tp, 0.0f);
     d.cx = vx_sel(ax, vx_sel(d.sx > 0, 0, ex - 1), vx_dda_start_cell(px, ex));
     d.cy = vx_sel(ay, vx_sel(d.sy > 0, 0, ey - 1), vx_dda_start_cell(py, ey));
     d.cz = vx_sel(az, vx_sel(d.sz > 0, 0, ez - 1), vx_dda_start_cell(pz, ez));
@@ -111,11 +116,11 @@ VX_FN vx_dda vx_dda_begin(vx_ray r, float gx, float gy, float gz, int ex, int ey
     return d;
 }
 
-/* Moves lanes in `go` to the next cell; those that leave the grid or pass tmax miss.
- * Every axis whose boundary lies at the nearest t steps at once: a ray through an edge or
- * corner goes straight to the diagonal cell instead of visiting side cells for zero
- * length (which would report hits on voxels the ray only touches). */
-VX_FN vx_dda vx_dda_advance(vx_dda d, vx_mask go, int ex, int ey, int ez) {
+/* Moves lanes in `go` to the next cell; those that pass tmax miss. Every axis whose
+ * boundary lies at the nearest t steps at once: a ray through an edge or corner goes
+ * straight to the diagonal cell instead of visiting side cells for zero length (which
+ * would report hits on voxels the ray only touches). */
+VX_FN vx_dda vx_dda_move(vx_dda d, vx_mask go) {
     vx_f32 tnext = vx_fmin(d.nx, vx_fmin(d.ny, d.nz));
     vx_mask mx = go && d.nx == tnext;
     vx_mask my = go && d.ny == tnext;
@@ -131,12 +136,17 @@ VX_FN vx_dda vx_dda_advance(vx_dda d, vx_mask go, int ex, int ey, int ez) {
     d.face = vx_sel(mx, vx_sel(d.sx > 0, VX_FACE_NEG_X, VX_FACE_POS_X),
              vx_sel(my, vx_sel(d.sy > 0, VX_FACE_NEG_Y, VX_FACE_POS_Y),
              vx_sel(mz, vx_sel(d.sz > 0, VX_FACE_NEG_Z, VX_FACE_POS_Z), d.face)));
-
-    vx_mask leaves = d.cx < 0 || d.cy < 0 || d.cz < 0 || d.cx >= ex || d.cy >= ey || d.cz >= ez ||
-                  tnext > d.tmax;
-    d.status = vx_sel(go && leaves, VX_STATUS_MISS, d.status);
+    d.status = vx_sel(go && tnext > d.tmax, VX_STATUS_MISS, d.status);
     d.t = vx_sel(go, vx_fmax(d.t, tnext), d.t);
     d.steps = d.steps + vx_sel(go, 1u, 0u);
+    return d;
+}
+
+/* vx_dda_move, and lanes that leave the grid [0, e) miss. */
+VX_FN vx_dda vx_dda_advance(vx_dda d, vx_mask go, int ex, int ey, int ez) {
+    d = vx_dda_move(d, go);
+    vx_mask leaves = d.cx < 0 || d.cy < 0 || d.cz < 0 || d.cx >= ex || d.cy >= ey || d.cz >= ez;
+    d.status = vx_sel(go && leaves, VX_STATUS_MISS, d.status);
     return d;
 }
 

@@ -72,7 +72,7 @@ VX_FN vx_hit vx_dense_finish(VX_BLOB blob, vx_dense_grid g, vx_dda d) {
 }
 
 VX_FN vx_dda vx_dense_begin(vx_dense_grid g, vx_ray r) {
-    return vx_dda_begin(r, vx_i2f(g.ox), vx_i2f(g.oy), vx_i2f(g.oz), g.ex, g.ey, g.ez);
+    return vx_dda_begin_scaled(r, vx_i2f(g.ox), vx_i2f(g.oy), vx_i2f(g.oz), g.ex, g.ey, g.ez, 1.0f);
 }
 
 /* Closest hit; for the dense grid the first solid cell is also a valid any-hit answer.

@@ -9,4 +9,8 @@ struct dense_grid_kernel {
     static constexpr const char* name = "dense_grid";
 };
 
+struct brickmap_kernel {
+    static constexpr const char* name = "brickmap";
+};
+
 }  // namespace voxray::kernels

@@ -34,7 +34,7 @@ inline camera auto_camera(const box3i& bounds, int up_axis, int view = 0) {
     glm::vec3 dir = std::cos(elevation) * (std::cos(azimuth) * a + std::sin(azimuth) * b) + std::sin(elevation) * up;
     camera c;
     c.fov_y_degrees = 50.0f;
-    float distance = radius / std::sin(0.5f * c.fov_y_degrees * 0.01745329f) * 0.9f;
+    float distance = radius / std::sin(0.5f * c.fov_y_degrees * 0.01745329f) * 0.7f;
     c.position = centre + dir * distance;
     c.target = centre;
     c.up = up;

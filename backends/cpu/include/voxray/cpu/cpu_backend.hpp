@@ -12,6 +12,8 @@
 #include "voxray/core/ray.hpp"
 #include "voxray/cpu/thread_pool.hpp"
 #include "voxray/kernels/cpu_lanes.hpp"
+#include "voxray/structures/word_range.hpp"
+#include "voxray/sync/dirty_ranges.hpp"
 
 namespace voxray {
 
@@ -110,7 +112,29 @@ class cpu_engine {
 public:
     explicit cpu_engine(cpu_options options) : pool_(std::make_unique<thread_pool>(options.threads)) {}
 
-    void upload(std::span<const std::uint32_t> blob) { blob_.assign(blob.begin(), blob.end()); }
+    void upload(std::span<const std::uint32_t> blob) {
+        blob_.assign(blob.begin(), blob.end());
+        count_upload(blob.size_bytes());
+    }
+
+    // Copies only the words of `ranges` (any order; overlaps and empty ranges allowed)
+    // into the engine's copy of the blob; a blob of another size is copied whole.
+    void update_ranges(std::span<const std::uint32_t> blob, std::span<const word_range> ranges) {
+        if (blob.size() != blob_.size()) return upload(blob);
+        std::uint64_t words = 0;
+        for (const word_range& r : sync::normalize_ranges(ranges, blob.size())) {
+            std::copy_n(blob.data() + r.offset, r.count, blob_.data() + r.offset);
+            words += r.count;
+        }
+        count_upload(words * sizeof(std::uint32_t));
+    }
+
+    // Bytes the last upload or update copied, and their running total.
+    std::uint64_t bytes_uploaded_last_update() const { return last_bytes_; }
+    std::uint64_t bytes_uploaded_total() const { return total_bytes_; }
+
+    // For tests and diagnostics, like the GPU engines': a copy of the blob traced.
+    std::vector<std::uint32_t> download_blob() const { return blob_; }
 
     void trace(std::span<const ray> rays, std::span<hit> hits, std::uint32_t mode) {
         const std::uint32_t* blob = blob_.data();
@@ -129,8 +153,14 @@ public:
     unsigned threads() const { return pool_->size(); }
 
 private:
+    void count_upload(std::uint64_t bytes) {
+        last_bytes_ = bytes;
+        total_bytes_ += bytes;
+    }
+
     std::unique_ptr<thread_pool> pool_;
     std::vector<std::uint32_t> blob_;
+    std::uint64_t last_bytes_ = 0, total_bytes_ = 0;
 };
 
 }  // namespace cpu_detail
