@@ -43,30 +43,18 @@ struct built {
     std::shared_ptr<void> object;
 };
 
+// Builds structure T from the model and records its size and build time.
+template <class T>
+built make_built(const std::string& name, const voxel_model& model) {
+    auto s = std::make_shared<T>(model);
+    return built{name, s->bytes(), s->build_seconds(), s};
+}
+
 inline built build_structure(const std::string& name, const voxel_model& model) {
-    built b{name, 0, 0, nullptr};
-    if (name == "dense") {
-        auto s = std::make_shared<dense_grid>(model);
-        b.bytes = s->bytes();
-        b.build_seconds = s->build_seconds();
-        b.object = s;
-        return b;
-    }
+    if (name == "dense") return make_built<dense_grid>(name, model);
 #if VOXRAY_WITH_EMBREE
-    if (name == "embree-quads") {
-        auto s = std::make_shared<embree::quad_scene>(model);
-        b.bytes = s->bytes();
-        b.build_seconds = s->build_seconds();
-        b.object = s;
-        return b;
-    }
-    if (name == "embree-boxes") {
-        auto s = std::make_shared<embree::box_scene>(model);
-        b.bytes = s->bytes();
-        b.build_seconds = s->build_seconds();
-        b.object = s;
-        return b;
-    }
+    if (name == "embree-quads") return make_built<embree::quad_scene>(name, model);
+    if (name == "embree-boxes") return make_built<embree::box_scene>(name, model);
 #endif
     fail("unknown or unavailable structure '", name, "' (known: dense, embree-quads, embree-boxes)");
 }

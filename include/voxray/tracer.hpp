@@ -7,18 +7,36 @@
 //   template <class Kernel> class engine {          // one per structure kernel
 //       engine(options);
 //       void upload(std::span<const std::uint32_t> blob);
+//       void update_ranges(std::span<const std::uint32_t> blob, std::span<const word_range>);
 //       void trace(std::span<const ray>, std::span<hit>, std::uint32_t mode);
+//       std::uint64_t bytes_uploaded_last_update() const;
 //   };
 // The tracer owns a snapshot of the structure's blob as of construction or the last
 // update(); the structure itself may be changed or destroyed afterwards.
+//
+// Incremental updates: a structure that tracks its edits offers
+//   std::vector<word_range> take_dirty_ranges();   // the words changed since the last call
+// and update(structure) on a non-const structure then sends only those words (cost
+// proportional to the edit). A structure whose blob changed size, or one without dirty
+// tracking, is sent whole.
 #pragma once
+#include <concepts>
+#include <cstdint>
 #include <span>
 
 #include "voxray/core/error.hpp"
 #include "voxray/core/hit.hpp"
 #include "voxray/core/ray.hpp"
+#include "voxray/structures/word_range.hpp"
 
 namespace voxray {
+
+// A structure that reports which blob words its edits changed. take_dirty_ranges() is
+// non-const: taking the ranges clears them.
+template <class Structure>
+concept tracks_dirty_ranges = requires(Structure& s) {
+    { s.take_dirty_ranges() } -> std::convertible_to<std::span<const word_range>>;
+};
 
 template <class Backend, class Structure>
 class tracer {
@@ -27,11 +45,28 @@ public:
     using structure_type = Structure;
 
     explicit tracer(const Structure& structure, typename Backend::options options = {}) : engine_(options) {
-        engine_.upload(structure.blob());
+        upload(structure.blob());
     }
 
-    // Sends the structure's current contents to the backend.
-    void update(const Structure& structure) { engine_.upload(structure.blob()); }
+    // Sends the structure's current contents to the backend, whole.
+    void update(const Structure& structure) { upload(structure.blob()); }
+
+    // Sends only the words the structure's edits changed since the last update (taking
+    // its dirty ranges), or everything when the blob's size changed since the last upload.
+    // Chosen over update(const Structure&) for non-const structures that track edits.
+    void update(Structure& structure)
+        requires tracks_dirty_ranges<Structure>
+    {
+        auto ranges = structure.take_dirty_ranges();  // always taken, so they never pile up
+        std::span<const std::uint32_t> blob = structure.blob();
+        if (blob.size() != uploaded_words_) return upload(blob);
+        engine_.update_ranges(blob, std::span<const word_range>(ranges));
+    }
+
+    // Bytes the last construction or update sent to the backend (for the CPU backends:
+    // copied), and the running total since construction.
+    std::uint64_t bytes_uploaded_last_update() const { return engine_.bytes_uploaded_last_update(); }
+    std::uint64_t bytes_uploaded_total() const { return engine_.bytes_uploaded_total(); }
 
     // First solid voxel along each ray within [tmin, tmax].
     void closest_hit(std::span<const ray> rays, std::span<hit> hits) { trace(rays, hits, VX_MODE_CLOSEST); }
@@ -42,6 +77,11 @@ public:
     auto& engine() { return engine_; }
 
 private:
+    void upload(std::span<const std::uint32_t> blob) {
+        engine_.upload(blob);
+        uploaded_words_ = blob.size();
+    }
+
     void trace(std::span<const ray> rays, std::span<hit> hits, std::uint32_t mode) {
         if (hits.size() < rays.size())
             fail("tracer: ", rays.size(), " rays but room for only ", hits.size(), " hits");
@@ -49,6 +89,7 @@ private:
     }
 
     typename Backend::template engine<typename Structure::kernel> engine_;
+    std::size_t uploaded_words_ = 0;
 };
 
 }  // namespace voxray

@@ -9,3 +9,7 @@
 #extension GL_EXT_buffer_reference : require
 #extension GL_EXT_buffer_reference_uvec2 : require
 #define VX_DIALECT_GLSL 1
+// A writable view of the blob for the commit shader (shaders/commit.glsl, kernels/commit.h),
+// which copies incremental updates into it. The trace kernels keep the readonly vx_words of
+// kernels/prelude.h; declaring this type costs them nothing.
+layout(buffer_reference, std430, buffer_reference_align = 4) buffer vx_words_rw { uint w[]; };

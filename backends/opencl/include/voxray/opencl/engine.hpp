@@ -1,6 +1,7 @@
 // The OpenCL engine for one structure kernel: the blob lives in one device buffer, rays
-// and hits go through two more that are reused while they are big enough. One engine
-// per thread: an engine's kernel arguments and buffers are not guarded.
+// and hits go through two more that are reused while they are big enough. Edits reach
+// the device blob through update_ranges (opencl/commit.hpp). One engine per thread: an
+// engine's kernel arguments and buffers are not guarded.
 #pragma once
 #include <CL/cl.h>
 
@@ -10,11 +11,14 @@
 #include <memory>
 #include <span>
 #include <string>
+#include <vector>
 
 #include "voxray/core/hit.hpp"
 #include "voxray/core/ray.hpp"
 #include "voxray/opencl/buffer.hpp"
+#include "voxray/opencl/commit.hpp"
 #include "voxray/opencl/program_cache.hpp"
+#include "voxray/sync/dirty_ranges.hpp"
 
 namespace voxray::opencl_detail {
 
@@ -25,7 +29,7 @@ inline constexpr std::size_t preferred_group_size = 64;
 template <class Kernel>
 class opencl_engine {
 public:
-    explicit opencl_engine(opencl_options options) : ctx_(acquire_device_context(options)) {
+    explicit opencl_engine(opencl_options options) : ctx_(acquire_device_context(options)), committer_(ctx_) {
         cl_int status = CL_SUCCESS;
         queue_ = queue_handle(clCreateCommandQueue(ctx_->context(), ctx_->device(), 0, &status));
         check(status, "clCreateCommandQueue", "opening device '" + ctx_->device_name() + "'");
@@ -58,10 +62,39 @@ public:
                                    blob.data(), 0, nullptr, nullptr),
               "clEnqueueWriteBuffer", "uploading the structure blob");
         uploaded_ = true;
+        blob_words_ = blob.size();
+        count_upload(bytes);
     }
 
-    // Structure edits: for now the whole blob is sent again.
+    // Sends the whole blob again.
     void update(std::span<const std::uint32_t> blob) { upload(blob); }
+
+    // Sends only the words of `ranges` (any order; overlaps and empty ranges allowed),
+    // through one commit packet and the commit kernel. `blob` must have the size last
+    // uploaded, else (or when the packet would not be smaller than the blob) the whole
+    // blob is uploaded instead.
+    void update_ranges(std::span<const std::uint32_t> blob, std::span<const word_range> ranges) {
+        if (!uploaded_ || blob.size() != blob_words_) return upload(blob);
+        std::vector<word_range> merged = sync::normalize_ranges(ranges, blob.size());
+        if (merged.empty()) return count_upload(0);
+        if (sync::packet_words(merged.size(), sync::total_words(merged)) >= blob.size()) return upload(blob);
+        count_upload(committer_.commit(queue_.get(), blob_.get(), blob, merged));
+    }
+
+    // Bytes the last upload or update sent to the device, and their running total.
+    std::uint64_t bytes_uploaded_last_update() const { return last_bytes_; }
+    std::uint64_t bytes_uploaded_total() const { return total_bytes_; }
+
+    // For tests and diagnostics: reads the device blob back (as many words as were last
+    // uploaded), to compare word for word with the host's.
+    std::vector<std::uint32_t> download_blob() {
+        std::vector<std::uint32_t> words(uploaded_ ? blob_words_ : 0);
+        if (words.empty()) return words;
+        check(clEnqueueReadBuffer(queue_.get(), blob_.get(), CL_TRUE, 0, words.size() * sizeof(std::uint32_t),
+                                  words.data(), 0, nullptr, nullptr),
+              "clEnqueueReadBuffer", "reading the structure blob back");
+        return words;
+    }
 
     void trace(std::span<const ray> rays, std::span<hit> hits, std::uint32_t mode) {
         if (hits.size() < rays.size())
@@ -111,6 +144,11 @@ public:
     std::size_t work_group_size() const { return local_size_; }
 
 private:
+    void count_upload(std::uint64_t bytes) {
+        last_bytes_ = bytes;
+        total_bytes_ += bytes;
+    }
+
     // The largest multiple of the device's preferred multiple that is at most
     // preferred_group_size and allowed for this kernel; at least 1.
     static std::size_t choose_group_size(std::size_t kernel_max, std::size_t multiple) {
@@ -122,11 +160,15 @@ private:
     std::shared_ptr<device_context> ctx_;
     queue_handle queue_;
     kernel_handle kernel_;
-    device_buffer blob_{CL_MEM_READ_ONLY, "the structure blob"};
+    committer committer_;
+    // Read-write: the commit kernel writes it; the trace kernels only read it.
+    device_buffer blob_{CL_MEM_READ_WRITE, "the structure blob"};
     device_buffer rays_{CL_MEM_READ_ONLY, "rays"};
     device_buffer hits_{CL_MEM_WRITE_ONLY, "hits"};
     std::size_t local_size_ = 1;
     bool uploaded_ = false;
+    std::size_t blob_words_ = 0;
+    std::uint64_t last_bytes_ = 0, total_bytes_ = 0;
 };
 
 }  // namespace voxray::opencl_detail

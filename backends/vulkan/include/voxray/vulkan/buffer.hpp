@@ -75,8 +75,9 @@ private:
         info.sharingMode = VK_SHARING_MODE_EXCLUSIVE;
         switch (role) {
         case buffer_role::storage_upload:
+            // TRANSFER_SRC too: engine::download_blob copies the blob back (tests, diagnostics).
             info.usage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT |
-                         VK_BUFFER_USAGE_TRANSFER_DST_BIT;
+                         VK_BUFFER_USAGE_TRANSFER_DST_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT;
             break;
         case buffer_role::storage_readback:
             info.usage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT |

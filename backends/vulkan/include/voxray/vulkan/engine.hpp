@@ -1,7 +1,9 @@
 // The Vulkan engine for one structure kernel: tracer<vulkan, Structure> holds one.
 //
-//   upload(blob)  structure words into a device buffer (grow-only; direct or staged)
-//   trace(...)    per batch slice: rays in, one dispatch of ceil(n / 64) groups, hits out
+//   upload(blob)                 structure words into a device buffer (grow-only; direct or staged)
+//   update_ranges(blob, ranges)  only the changed words, through a commit packet and the
+//                                commit shader (vulkan/commit.hpp)
+//   trace(...)                   per batch slice: rays in, one dispatch of ceil(n / 64) groups, hits out
 //
 // Synchronous: trace returns when the hits are in the caller's span. Not thread-safe;
 // use one engine per thread.
@@ -16,6 +18,7 @@
 #include <string>
 #include <type_traits>
 #include <utility>
+#include <vector>
 
 #include <vulkan/vulkan.h>
 
@@ -23,7 +26,9 @@
 #include "voxray/core/ray.hpp"
 #include "voxray/generated/vulkan_modules.hpp"
 #include "voxray/vulkan/buffer.hpp"
+#include "voxray/sync/dirty_ranges.hpp"
 #include "voxray/vulkan/commands.hpp"
+#include "voxray/vulkan/commit.hpp"
 #include "voxray/vulkan/device.hpp"
 #include "voxray/vulkan/options.hpp"
 #include "voxray/vulkan/pipeline.hpp"
@@ -63,6 +68,7 @@ public:
         std::swap(ctx_, o.ctx_);
         std::swap(commands_, o.commands_);
         std::swap(pipeline_, o.pipeline_);
+        std::swap(committer_, o.committer_);
         std::swap(blob_, o.blob_);
         std::swap(rays_, o.rays_);
         std::swap(hits_, o.hits_);
@@ -70,6 +76,9 @@ public:
         std::swap(hits_staging_, o.hits_staging_);
         std::swap(slice_, o.slice_);
         std::swap(pipeline_seconds_, o.pipeline_seconds_);
+        std::swap(blob_words_, o.blob_words_);
+        std::swap(last_bytes_, o.last_bytes_);
+        std::swap(total_bytes_, o.total_bytes_);
         return *this;
     }
 
@@ -80,6 +89,8 @@ public:
             blob_ = buffer();  // free the old one first: both may not fit at once
             blob_ = buffer(*ctx_, bytes, buffer_role::storage_upload, !options_.force_staging, "structure blob");
         }
+        blob_words_ = blob.size();
+        count_upload(blob.size_bytes());
         if (blob_.mapped()) {
             std::memcpy(blob_.mapped(), blob.data(), blob.size_bytes());
             return;  // host writes before vkQueueSubmit are visible to the device
@@ -99,6 +110,49 @@ public:
                                     VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_READ_BIT);
             commands_->submit_and_wait();
         }
+    }
+
+    // Sends only the words of `ranges` (any order; overlaps and empty ranges allowed) and
+    // runs the commit shader; the next trace sees them. `blob` must have the size last
+    // uploaded, else (or when the packet would not be smaller than the blob) the whole
+    // blob is uploaded instead.
+    void update_ranges(std::span<const std::uint32_t> blob, std::span<const word_range> ranges) {
+        if (!blob_.handle() || blob.size() != blob_words_) return upload(blob);
+        std::vector<word_range> merged = sync::normalize_ranges(ranges, blob.size());
+        if (merged.empty()) return count_upload(0);
+        if (sync::packet_words(merged.size(), sync::total_words(merged)) >= blob.size()) return upload(blob);
+        count_upload(committer_.commit(*ctx_, *commands_, blob_, blob, merged, !options_.force_staging));
+    }
+
+    // Bytes the last upload or update sent to the device, and their running total.
+    std::uint64_t bytes_uploaded_last_update() const { return last_bytes_; }
+    std::uint64_t bytes_uploaded_total() const { return total_bytes_; }
+
+    // For tests and diagnostics: reads the device blob back (as many words as were last
+    // uploaded), to compare word for word with the host's.
+    std::vector<std::uint32_t> download_blob() {
+        std::vector<std::uint32_t> words(blob_.handle() ? blob_words_ : 0);
+        if (words.empty()) return words;
+        VkDeviceSize bytes = words.size() * sizeof(std::uint32_t);
+        buffer staging;
+        if (!blob_.mapped()) staging = buffer(*ctx_, bytes, buffer_role::staging_readback, true, "blob read-back");
+        VkCommandBuffer cmd = commands_->begin();
+        if (blob_.mapped()) {
+            command_stream::barrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT,
+                                    VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_TRANSFER_WRITE_BIT,
+                                    VK_PIPELINE_STAGE_HOST_BIT, VK_ACCESS_HOST_READ_BIT);
+        } else {
+            command_stream::barrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT,
+                                    VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_TRANSFER_WRITE_BIT,
+                                    VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_READ_BIT);
+            VkBufferCopy region{0, 0, bytes};
+            vkCmdCopyBuffer(cmd, blob_.handle(), staging.handle(), 1, &region);
+            command_stream::barrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT,
+                                    VK_PIPELINE_STAGE_HOST_BIT, VK_ACCESS_HOST_READ_BIT);
+        }
+        commands_->submit_and_wait();
+        std::memcpy(words.data(), blob_.mapped() ? blob_.mapped() : staging.mapped(), bytes);
+        return words;
     }
 
     void trace(std::span<const ray> rays, std::span<hit> hits, std::uint32_t mode) {
@@ -123,6 +177,11 @@ public:
     double pipeline_seconds() const { return pipeline_seconds_; }
 
 private:
+    void count_upload(std::uint64_t bytes) {
+        last_bytes_ = bytes;
+        total_bytes_ += bytes;
+    }
+
     // Grow-only ray/hit buffers (and their staging twins where they are not mapped).
     void reserve(std::size_t count) {
         if (rays_.size() >= count * sizeof(ray)) return;
@@ -188,9 +247,12 @@ private:
     std::unique_ptr<context> ctx_;
     std::unique_ptr<command_stream> commands_;
     std::unique_ptr<compute_pipeline> pipeline_;
+    committer committer_;
     buffer blob_, rays_, hits_, rays_staging_, hits_staging_;
     std::size_t slice_ = max_slice_rays;
     double pipeline_seconds_ = 0;
+    std::size_t blob_words_ = 0;
+    std::uint64_t last_bytes_ = 0, total_bytes_ = 0;
 };
 
 }  // namespace voxray::vulkan_detail

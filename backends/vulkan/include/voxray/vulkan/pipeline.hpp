@@ -33,7 +33,11 @@ static_assert(offsetof(push_constants, count) == 24 && offsetof(push_constants, 
 
 class compute_pipeline {
 public:
-    compute_pipeline(const context& ctx, std::span<const std::uint32_t> spirv) : device_(ctx.device()) {
+    // `push_bytes`: size of the push constant record its shader declares (the trace
+    // shaders' push_constants by default; the commit shader has its own).
+    compute_pipeline(const context& ctx, std::span<const std::uint32_t> spirv,
+                     std::uint32_t push_bytes = sizeof(push_constants))
+        : device_(ctx.device()), push_bytes_(push_bytes) {
         try {
             create(spirv);
         } catch (...) {
@@ -45,7 +49,10 @@ public:
     compute_pipeline(const compute_pipeline&) = delete;
     compute_pipeline& operator=(const compute_pipeline&) = delete;
 
-    void bind(VkCommandBuffer cmd, const push_constants& pc) const {
+    template <class Push>
+    void bind(VkCommandBuffer cmd, const Push& pc) const {
+        if (sizeof(Push) != push_bytes_)
+            fail("vulkan: push constants of ", sizeof(Push), " bytes for a pipeline made for ", push_bytes_);
         vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline_);
         vkCmdPushConstants(cmd, layout_, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(pc), &pc);
     }
@@ -57,8 +64,8 @@ private:
         module_info.pCode = spirv.data();
         vk_check(vkCreateShaderModule(device_, &module_info, nullptr, &module_), "vkCreateShaderModule");
 
-        // 32 bytes: within the 128 bytes every device must offer.
-        VkPushConstantRange range{VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(push_constants)};
+        // At most 32 bytes: within the 128 bytes every device must offer.
+        VkPushConstantRange range{VK_SHADER_STAGE_COMPUTE_BIT, 0, push_bytes_};
         auto layout_info = vk_struct<VkPipelineLayoutCreateInfo>(VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO);
         layout_info.pushConstantRangeCount = 1;
         layout_info.pPushConstantRanges = &range;
@@ -87,6 +94,7 @@ private:
     }
 
     VkDevice device_;
+    std::uint32_t push_bytes_;
     VkShaderModule module_ = VK_NULL_HANDLE;
     VkPipelineLayout layout_ = VK_NULL_HANDLE;
     VkPipeline pipeline_ = VK_NULL_HANDLE;
