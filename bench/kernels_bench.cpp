@@ -1,10 +1,11 @@
-// Microbenchmarks of the portable kernels on the CPU: one thread, the dense grid
-// traversal with SIMD lanes vs scalar lanes, on camera rays over a seeded noise scene
+// Microbenchmarks of the portable kernels on the CPU: one thread, the dense grid and
+// brickmap traversals with SIMD lanes vs scalar lanes, on camera rays over a seeded noise scene
 // with a floor. Counters: rays/s and steps per ray.
 #include <benchmark/benchmark.h>
 
 #include "voxray/check/ray_sets.hpp"
 #include "voxray/cpu.hpp"
+#include "voxray/brickmap/brickmap.hpp"
 #include "voxray/structures/dense_grid.hpp"
 
 namespace {
@@ -24,10 +25,10 @@ const voxray::voxel_model& scene() {
     return model;
 }
 
-template <class Backend>
+template <class Backend, class Structure>
 void trace_primary(benchmark::State& state) {
-    voxray::dense_grid grid(scene());
-    voxray::tracer<Backend, voxray::dense_grid> tracer(grid, voxray::cpu_options{1});
+    Structure structure(scene());
+    voxray::tracer<Backend, Structure> tracer(structure, voxray::cpu_options{1});
     auto rays = voxray::primary_rays(voxray::auto_camera(scene().bounds(), 2), 256, 256);
     std::vector<voxray::hit> hits(rays.size());
     for (auto _ : state) {
@@ -40,8 +41,11 @@ void trace_primary(benchmark::State& state) {
     state.counters["steps/ray"] = steps / double(hits.size());
 }
 
-BENCHMARK(trace_primary<voxray::cpu>)->Name("dense_primary/simd")->Unit(benchmark::kMillisecond);
-BENCHMARK(trace_primary<voxray::cpu_scalar>)->Name("dense_primary/scalar")->Unit(benchmark::kMillisecond);
+using brickmap8 = voxray::brickmap<std::uint8_t, 8>;
+BENCHMARK(trace_primary<voxray::cpu, voxray::dense_grid>)->Name("dense_primary/simd")->Unit(benchmark::kMillisecond);
+BENCHMARK(trace_primary<voxray::cpu_scalar, voxray::dense_grid>)->Name("dense_primary/scalar")->Unit(benchmark::kMillisecond);
+BENCHMARK(trace_primary<voxray::cpu, brickmap8>)->Name("brickmap_primary/simd")->Unit(benchmark::kMillisecond);
+BENCHMARK(trace_primary<voxray::cpu_scalar, brickmap8>)->Name("brickmap_primary/scalar")->Unit(benchmark::kMillisecond);
 
 }  // namespace
 

@@ -30,10 +30,100 @@ std::vector<ray> make_rays(const std::string& kind, const voxel_model& model, tr
     fail("--rays must be primary, secondary or shadow, not '", kind, "'");
 }
 
+// The brickmap paper's editing load: 50 balls of radius 25 bouncing through the world;
+// each frame erases every ball and fills it at its new place (100 sphere edits in one
+// batch), then brings the backend up to date with only the changed words.
+int run_edit_bench(const args& a, const voxel_model& model, const std::string& structure_name,
+                   const std::string& backend) {
+    if (structure_name != "brickmap") fail("--edits needs an editable structure: --structure brickmap");
+    std::string kind = a.get("edits", "");
+    if (kind != "spheres" && kind != "voxel") fail("--edits must be 'spheres' or 'voxel', not '", kind, "'");
+    unsigned threads = unsigned(a.number("threads", 2, 1, 256));
+    int frames = int(a.number("runs", 20, 1, 100000));
+    constexpr int balls = 50, radius = 25;
+
+    auto structure = build_structure(structure_name, model);
+    auto& map = *std::static_pointer_cast<brickmap8>(structure.object);
+    auto engine = make_traceable(structure, backend);
+    box3i world = map.bounds();
+    rng g(11);
+    std::vector<glm::vec3> position(balls), velocity(balls);
+    glm::vec3 lo = glm::vec3(world.min), hi = glm::vec3(world.max);
+    for (int i = 0; i < balls; ++i) {
+        for (int k = 0; k < 3; ++k) {
+            position[i][k] = g.uniform(lo[k], hi[k]);
+            velocity[i][k] = g.uniform(-4.0f, 4.0f);
+        }
+    }
+    auto sphere_at = [&](int i) { return regions::sphere{glm::ivec3(glm::floor(position[i])), radius}; };
+
+    double edit_seconds = 0, update_seconds = 0;
+    std::uint64_t writes = 0, uploaded = 0;
+    std::vector<region_edit> edits;
+    // Frame 0 is a warm-up, not counted: a map built to size grows its brick pool on its
+    // first new brick, and that update sends the whole (reallocated) blob once.
+    for (int f = 0; f <= frames; ++f) {
+        std::fprintf(stderr, "frame %d/%d ...\r", f, frames);
+        edits.clear();
+        if (kind == "voxel") {  // the smallest edit: one voxel somewhere in the world
+            glm::ivec3 e = world.extent();
+            edits.push_back({regions::box{box3i{world.min + glm::ivec3(g.below(e.x), g.below(e.y), g.below(e.z)), {}}},
+                             edit_op::fill, std::uint8_t(1 + g.below(255))});
+            auto& b = std::get<regions::box>(edits.back().region).b;
+            b.max = b.min + 1;
+        }
+        for (int i = 0; kind == "spheres" && i < balls; ++i) {
+            edits.push_back({sphere_at(i), edit_op::erase, 0});
+            for (int k = 0; k < 3; ++k) {  // bounce off the world's walls
+                position[i][k] += velocity[i][k];
+                if (position[i][k] < lo[k] || position[i][k] >= hi[k]) velocity[i][k] = -velocity[i][k];
+                position[i][k] = std::clamp(position[i][k], lo[k], hi[k] - 1.0f);
+            }
+            edits.push_back({sphere_at(i), edit_op::fill, std::uint8_t(1 + i * 5)});
+        }
+        for (auto& e : edits) writes += f == 0 ? 0 : std::visit([&](const auto& r) { return region_voxels(r, world); }, e.region);
+        if (f == 0) {
+            map.apply_batch(edits, threads);
+            engine->after_edits(model, map.take_dirty_ranges());
+            continue;
+        }
+        auto start = std::chrono::steady_clock::now();
+        map.apply_batch(edits, threads);
+        auto edited = std::chrono::steady_clock::now();
+        auto ranges = map.take_dirty_ranges();
+        engine->after_edits(model, ranges);
+        auto synced = std::chrono::steady_clock::now();
+        edit_seconds += std::chrono::duration<double>(edited - start).count();
+        update_seconds += std::chrono::duration<double>(synced - edited).count();
+        uploaded += engine->bytes_uploaded_last_update();
+    }
+    std::fprintf(stderr, "\n");
+    double per_second = double(writes) / edit_seconds;
+    double per_update = double(uploaded) / frames;
+    std::printf("scene %s  structure brickmap  backend %s (%s)  %d frames of %s, %u threads\n",
+                a.positional()[0].c_str(), backend.c_str(), engine->device().c_str(), frames,
+                kind == "voxel" ? "one voxel edit" : "100 sphere edits (50 balls, r 25)", threads);
+    std::printf("world %d x %d x %d, blob %zu bytes; %.2f ms edits and %.2f ms update per frame\n",
+                world.extent().x, world.extent().y, world.extent().z, map.bytes(), 1e3 * edit_seconds / frames,
+                1e3 * update_seconds / frames);
+    if (a.has("json")) {
+        std::ofstream j(a.get("json", ""));
+        j << "{\"scene\": \"" << a.positional()[0] << "\", \"structure\": \"brickmap\", \"backend\": \"" << backend
+          << "\", \"edits\": \"" << kind << "\", \"threads\": " << threads << ", \"frames\": " << frames
+          << ", \"voxel_writes\": " << writes << ", \"writes_per_second\": " << per_second
+          << ", \"bytes_uploaded_per_update\": " << per_update << ", \"blob_bytes\": " << map.bytes()
+          << ", \"update_ms\": " << 1e3 * update_seconds / frames << "}\n";
+        if (!j) fail("cannot write ", a.get("json", ""));
+    }
+    std::printf("edits: %.0f voxel writes/s, %.0f bytes uploaded per update\n", per_second, per_update);
+    return 0;
+}
+
 }  // namespace
 
 int run_bench(int argc, char** argv) {
-    args a(argc, argv, 2, {"structure", "backend", "rays", "width", "height", "runs", "json", "resolution"});
+    args a(argc, argv, 2,
+           {"structure", "backend", "rays", "width", "height", "runs", "json", "resolution", "edits", "threads"});
     if (a.positional().size() != 1) fail("bench takes one SCENE");
     std::string scene = a.positional()[0], kind = a.get("rays", "primary");
     std::string structure_name = a.get("structure", "dense"), backend = a.get("backend", "cpu");
@@ -42,6 +132,7 @@ int run_bench(int argc, char** argv) {
     if (kind != "primary" && kind != "secondary" && kind != "shadow")
         fail("--rays must be primary, secondary or shadow, not '", kind, "'");
     auto model = load_scene(scene, int(a.number("resolution", 512, 1, 4096)));
+    if (a.has("edits")) return run_edit_bench(a, model, structure_name, backend);
 
     std::fprintf(stderr, "building %s ...\n", structure_name.c_str());
     auto structure = build_structure(structure_name, model);

@@ -28,47 +28,78 @@ void print_mismatch(std::size_t index, const ray& r, const hit& expected, const 
 
 }  // namespace
 
+// Applies the edits to every editable structure through its editing API and to the model
+// (the reference), then brings every tracer up to date; returns the ranges sent.
+void apply_edits(const std::vector<region_edit>& edits, voxel_model& model, std::vector<built>& structures,
+                 std::vector<std::unique_ptr<traceable>>& tracers) {
+    box3i world = model.bounds();
+    std::vector<word_range> ranges;
+    for (auto& s : structures) {
+        if (!s.editable) continue;
+        auto& map = *std::static_pointer_cast<brickmap8>(s.object);
+        for (auto& e : edits) std::visit([&](const auto& region) { map.apply(region, e.op, e.value); }, e.region);
+        ranges = map.take_dirty_ranges();  // one editable structure today: the brickmap
+    }
+    std::uint64_t writes = 0;
+    for (auto& e : edits) writes += apply_to_model(model, e, world);
+    std::fprintf(stderr, "applied %zu edits (%llu voxel writes); updating every backend ...\n", edits.size(),
+                 (unsigned long long)writes);
+    for (auto& t : tracers) t->after_edits(model, ranges);
+}
+
 int run_check(int argc, char** argv) {
-    args a(argc, argv, 2, {"rays", "structures", "backends", "seed", "resolution"});
+    args a(argc, argv, 2, {"rays", "structures", "backends", "seed", "resolution", "edits"});
     if (a.positional().size() != 1) fail("check takes one SCENE");
     auto count = std::size_t(a.number("rays", 1000000, 1, 100000000));
     auto seed = std::uint64_t(a.number("seed", 1, 0, 1ll << 62));
-    auto structures = a.list("structures", "dense,embree-boxes");
+    int edit_count = int(a.number("edits", 0, 0, 100000));
+    auto structure_names = a.list("structures", "dense,brickmap,embree-boxes");
     auto backends = a.list("backends", "cpu,cpu-scalar,opencl,vulkan");
     auto model = load_scene(a.positional()[0], int(a.number("resolution", 512, 1, 4096)));
+    box3i world = model.bounds();
 
-    auto rays = check_rays(model.bounds(), model.up_axis, count, seed);
-    std::fprintf(stderr, "tracing %zu rays on the reference (dense, cpu-scalar) ...\n", rays.size());
-    auto reference_grid = build_structure("dense", model);
-    std::vector<hit> reference(rays.size()), hits(rays.size());
-    make_traceable(reference_grid, "cpu-scalar")->closest_hit(rays, reference);
-
-    std::uint64_t pairs = 0, mismatches = 0, ties = 0;
+    // Every pair is set up before any edit, so that edits reach it through update().
+    std::vector<built> structures;
+    std::vector<std::unique_ptr<traceable>> tracers;
+    std::vector<std::pair<std::string, std::string>> labels;
     std::printf("%-14s %-11s %12s %10s\n", "structure", "backend", "mismatches", "ties");
-    for (auto& s : structures) {
-        auto structure = s == "dense" ? reference_grid : build_structure(s, model);
+    for (auto& s : structure_names) {
+        std::fprintf(stderr, "building %s ...\n", s.c_str());
+        structures.push_back(build_structure(s, model));
         for (auto& b : backends) {
             if (!pair_exists(s, b)) {
                 std::printf("%-14s %-11s %s\n", s.c_str(), b.c_str(), "(pair does not exist: not counted)");
                 continue;
             }
-            std::fprintf(stderr, "checking %s on %s ...\n", s.c_str(), b.c_str());
-            make_traceable(structure, b)->closest_hit(rays, hits);
-            agreement_counts counts;
-            int shown = 0;
-            for (std::size_t i = 0; i < rays.size(); ++i) {
-                auto verdict = compare_hits(rays[i], reference[i], hits[i]);
-                counts.add(verdict);
-                if (verdict == agreement::mismatch && shown++ < 3) print_mismatch(i, rays[i], reference[i], hits[i]);
-            }
-            std::printf("%-14s %-11s %12llu %10llu\n", s.c_str(), b.c_str(), (unsigned long long)counts.mismatches,
-                        (unsigned long long)counts.ties);
-            ++pairs;
-            mismatches += counts.mismatches;
-            ties += counts.ties;
+            tracers.push_back(make_traceable(structures.back(), b));
+            labels.emplace_back(s, b);
         }
     }
-    std::printf("checked %zu rays x %llu pairs: %llu mismatches, %llu ties\n", rays.size(), (unsigned long long)pairs,
+    if (edit_count > 0) apply_edits(random_edits(world, edit_count, seed ^ 0x5eed), model, structures, tracers);
+
+    auto rays = check_rays(world, model.up_axis, count, seed);
+    std::fprintf(stderr, "tracing %zu rays on the reference (dense, cpu-scalar) ...\n", rays.size());
+    std::vector<hit> reference(rays.size()), hits(rays.size());
+    make_traceable(build_structure("dense", model), "cpu-scalar")->closest_hit(rays, reference);
+
+    std::uint64_t mismatches = 0, ties = 0;
+    for (std::size_t p = 0; p < tracers.size(); ++p) {
+        auto& [s, b] = labels[p];
+        std::fprintf(stderr, "checking %s on %s ...\n", s.c_str(), b.c_str());
+        tracers[p]->closest_hit(rays, hits);
+        agreement_counts counts;
+        int shown = 0;
+        for (std::size_t i = 0; i < rays.size(); ++i) {
+            auto verdict = compare_hits(rays[i], reference[i], hits[i]);
+            counts.add(verdict);
+            if (verdict == agreement::mismatch && shown++ < 3) print_mismatch(i, rays[i], reference[i], hits[i]);
+        }
+        std::printf("%-14s %-11s %12llu %10llu\n", s.c_str(), b.c_str(), (unsigned long long)counts.mismatches,
+                    (unsigned long long)counts.ties);
+        mismatches += counts.mismatches;
+        ties += counts.ties;
+    }
+    std::printf("checked %zu rays x %zu pairs: %llu mismatches, %llu ties\n", rays.size(), tracers.size(),
                 (unsigned long long)mismatches, (unsigned long long)ties);
     return mismatches == 0 ? 0 : 1;
 }

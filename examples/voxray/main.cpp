@@ -17,10 +17,11 @@ void usage() {
         "commands:\n"
         "  info   SCENE [--structures A,B]\n"
         "  render SCENE --structure S --backend B --out FILE.png [--width W --height H] [--view V]\n"
-        "  check  SCENE [--rays N] [--structures A,B] [--backends A,B] [--seed K]\n"
+        "  check  SCENE [--rays N] [--structures A,B] [--backends A,B] [--seed K] [--edits K]\n"
         "  bench  SCENE --structure S --backend B [--rays primary|secondary|shadow]\n"
         "         [--width W --height H] [--runs R] [--json FILE]\n"
-        "structures: dense, embree-quads, embree-boxes    backends: cpu, cpu-scalar, opencl, vulkan");
+        "  bench  SCENE --structure brickmap --backend B --edits spheres|voxel [--threads T] [--runs FRAMES]\n"
+        "structures: dense, brickmap, embree-quads, embree-boxes    backends: cpu, cpu-scalar, opencl, vulkan");
 }
 
 }  // namespace

@@ -58,9 +58,15 @@ public:
         requires tracks_dirty_ranges<Structure>
     {
         auto ranges = structure.take_dirty_ranges();  // always taken, so they never pile up
+        update(structure, std::span<const word_range>(ranges));
+    }
+
+    // The same with ranges taken by the caller: several tracers of one structure (one per
+    // backend, say) take its dirty ranges once and pass them to each.
+    void update(const Structure& structure, std::span<const word_range> ranges) {
         std::span<const std::uint32_t> blob = structure.blob();
         if (blob.size() != uploaded_words_) return upload(blob);
-        engine_.update_ranges(blob, std::span<const word_range>(ranges));
+        engine_.update_ranges(blob, ranges);
     }
 
     // Bytes the last construction or update sent to the backend (for the CPU backends:

@@ -1,13 +1,17 @@
 #!/usr/bin/env bash
-# voxray check on every shared .vox scene and a voxelized mesh, all structures x backends.
+# voxray check on every shared .vox scene and a voxelized mesh, all structures x backends,
+# and once more after random edits.
 # Skips (exit 0 with a note) only when the data folder is absent.
 set -euo pipefail
 tool="$1"; data="${VOXRAY_DATA_DIR:-$2}"
 if [ ! -d "$data/vox" ]; then echo "no data folder at $data: skipped"; exit 0; fi
 status=0
 for scene in "$data"/vox/*.vox "$data/mesh/stanford_bunny.ply"; do
-    line=$("$tool" check "$scene" --resolution 256 --rays 100000 --structures dense,embree-boxes \
+    line=$("$tool" check "$scene" --resolution 256 --rays 100000 --structures dense,brickmap,embree-boxes \
         --backends cpu,cpu-scalar,opencl,vulkan 2>/dev/null | tail -n1) || status=1
     echo "$(basename "$scene"): $line"
 done
+line=$("$tool" check "$data/vox/minecraft_tree.vox" --rays 100000 --edits 200 --structures dense,brickmap \
+    --backends cpu,cpu-scalar,opencl,vulkan 2>/dev/null | tail -n1) || status=1
+echo "minecraft_tree.vox after 200 edits: $line"
 exit $status

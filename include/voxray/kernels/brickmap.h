@@ -129,9 +129,13 @@ VX_FN vx_bm_state vx_bm_step(VX_BLOB blob, vx_brickmap g, vx_bm_state s) {
     if (vx_any(at_top)) {
         vx_u32 cell = vx_bm_cell(blob, g, s.top.cx, s.top.cy, s.top.cz, at_top);
         vx_mask enter = at_top && cell != VX_BM_CELL_EMPTY;
-        s = vx_bm_descend(s, g, cell, enter);
-        s.top = vx_dda_advance(s.top, at_top && !enter, g.cells_x, g.cells_y, g.cells_z);
-        s.status = vx_sel(at_top && !enter, s.top.status, s.status);
+        vx_mask pass = at_top && !enter;
+        /* Guards on vx_any keep SIMD lanes from paying for work no lane needs. */
+        if (vx_any(enter)) s = vx_bm_descend(s, g, cell, enter);
+        if (vx_any(pass)) {
+            s.top = vx_dda_advance(s.top, pass, g.cells_x, g.cells_y, g.cells_z);
+            s.status = vx_sel(pass, s.top.status, s.status);
+        }
     }
     if (vx_any(at_voxel)) {
         vx_u32 brick = vx_bm_brick(g, s.cell);
@@ -149,9 +153,11 @@ VX_FN vx_bm_state vx_bm_step(VX_BLOB blob, vx_brickmap g, vx_bm_state s) {
                          ((s.fine.cx >> g.brick_bits) != s.top.cx || (s.fine.cy >> g.brick_bits) != s.top.cy ||
                           (s.fine.cz >> g.brick_bits) != s.top.cz);
         /* Back to the top walk: its next crossing is the one the voxel walk just made. */
-        s.level = vx_sel(leaves, 0u, s.level);
-        s.top = vx_dda_advance(s.top, leaves, g.cells_x, g.cells_y, g.cells_z);
-        s.status = vx_sel(leaves, s.top.status, s.status);
+        if (vx_any(leaves)) {
+            s.level = vx_sel(leaves, 0u, s.level);
+            s.top = vx_dda_advance(s.top, leaves, g.cells_x, g.cells_y, g.cells_z);
+            s.status = vx_sel(leaves, s.top.status, s.status);
+        }
     }
     return s;
 }

@@ -1,0 +1,409 @@
+// An editable two-level voxel world: a paged top grid of 32-bit cells (empty, solid with
+// one payload, or a brick index) over a growable pool of edge^3 bricks. The data lives in
+// the blob words themselves (layout/brickmap_layout.h), so blob() is zero-copy and a
+// dirty range is a range of those words.
+//
+// Threads: set/get/apply may run from many threads at once. Writers hold a shared lock on
+// `grow_` (growth of the pool or the page area takes it exclusively and may move the
+// brick area), a cell turns into a brick by compare-exchange (a loser gives its brick
+// back), and a brick is edited under a spin lock bit in its host-side metadata word:
+//
+//   meta (host only, one word per brick):
+//    31     30       29      28 .. 16   15 .. 0
+//   +----+-------+-------+----------+--------------+
+//   |lock|pending| dirty |    0     | solid voxels |
+//   +----+-------+-------+----------+--------------+
+//
+// A brick whose count reaches 0 or edge^3 is only *marked* pending; settle() (exclusive,
+// run by every region op, take_dirty_ranges() and save) recycles empty bricks and
+// collapses uniform ones into solid cells. Freeing only when no writer can hold the
+// brick's index is what makes recycling safe without hazard pointers; between settles
+// the blob is still valid, just not maximally compact.
+//
+// Solid cells keep the payload in bits 1..31, so a uint32_t payload >= 2^31 cannot be a
+// solid cell: such bricks simply stay bricks. Voxels outside bounds() are never set, so a
+// brick that sticks out of the world never collapses.
+#pragma once
+#include <atomic>
+#include <chrono>
+#include <cstdint>
+#include <mutex>
+#include <shared_mutex>
+#include <span>
+#include <string_view>
+#include <thread>
+#include <variant>
+#include <vector>
+
+#include "voxray/brickmap/brick_codec.hpp"
+#include "voxray/brickmap/brick_pool.hpp"
+#include "voxray/brickmap/dirty_set.hpp"
+#include "voxray/brickmap/regions.hpp"
+#include "voxray/brickmap/top_grid.hpp"
+#include "voxray/core/box.hpp"
+#include "voxray/core/error.hpp"
+#include "voxray/kernels/kernel_ids.hpp"
+#include "voxray/model/build_threads.hpp"
+#include "voxray/model/voxel_model.hpp"
+#include "voxray/structures/blob.hpp"
+#include "voxray/structures/word_range.hpp"
+
+namespace voxray {
+
+template <class Payload, int E>
+struct brickmap_io;
+
+template <class Payload = std::uint8_t, int BrickEdge = 8>
+class brickmap : private top_grid {
+public:
+    using codec = brick_codec<Payload, BrickEdge>;
+    using payload_type = Payload;
+    static constexpr int brick_edge = BrickEdge;
+    static constexpr std::string_view name = "brickmap";
+    using kernel = kernels::brickmap_kernel;
+
+    struct options {
+        std::uint32_t initial_bricks = 64;  // pool capacity before the first growth
+        std::uint32_t initial_pages = 1;
+    };
+
+    brickmap() : brickmap(box3i{}) {}
+    explicit brickmap(box3i world, options opt = {}) {
+        top_grid::init(world, codec::bits, codec::payload_bits, codec::words, codec::occupancy_words,
+                       std::max(opt.initial_pages, 1u), std::max(opt.initial_bricks, 1u));
+        pool_.reset(brick_capacity());
+        meta_.assign(brick_capacity(), 0);
+        owner_.assign(brick_capacity(), 0);
+        dirty_.mark_whole();  // the device has nothing yet
+    }
+    explicit brickmap(const voxel_model& model, unsigned threads = 0) : brickmap(build(model, threads)) {}
+
+    // Multi-threaded build over the model's chunks; `threads` 0 = all hardware threads.
+    static brickmap build(const voxel_model& model, unsigned threads = 0, options opt = {});
+
+    // ---- single voxels (thread-safe) ----
+    Payload get(glm::ivec3 p) const {
+        if (!world_.contains(p)) return 0;
+        std::shared_lock lock(locks_.grow);
+        glm::uvec3 q(p - world_.min);
+        std::uint32_t co = find_cell(q >> unsigned(codec::bits));
+        if (!co) return 0;
+        std::uint32_t c = codec::load(words_.data() + co);
+        if (!(c & VX_BM_CELL_IS_BRICK)) return Payload(c >> 1);
+        return codec::get(brick_ptr(c >> 1), local_index(q));
+    }
+    // Sets voxel p (inside bounds(), else voxray::error) to v; 0 erases.
+    void set(glm::ivec3 p, Payload v) {
+        if (!world_.contains(p))
+            fail("brickmap: voxel (", p.x, ", ", p.y, ", ", p.z, ") is outside the world");
+        glm::uvec3 q(p - world_.min);
+        run r{local_index(q), 1};
+        edit_ctx ctx;
+        edit_with_growth(q >> unsigned(codec::bits), v ? edit_op::fill : edit_op::erase, v, false, ctx,
+                         [&](std::uint32_t* brick) { return codec::write_run(brick, r.first, 1, r.op(v), v); });
+    }
+
+    // ---- regions (thread-safe; each call parallelizes over bricks with `threads`) ----
+    // fill: every voxel of the region gets `value`; erase: 0; paint: `value` where solid.
+    template <class Region>
+    void apply(const Region& region, edit_op op, Payload value, unsigned threads = 1);
+    // A list of region edits applied in order (see apply_batch).
+    struct edit {
+        std::variant<regions::box, regions::sphere, regions::capsule> region;
+        edit_op op = edit_op::fill;
+        Payload value = 0;
+    };
+    // Same result as apply() of each edit in turn; threads share out bricks, not edits.
+    void apply_batch(std::span<const edit> edits, unsigned threads = 1);
+    void fill_box(box3i b, Payload v, unsigned threads = 1) { apply(regions::box{b}, edit_op::fill, v, threads); }
+    void erase_box(box3i b, unsigned threads = 1) { apply(regions::box{b}, edit_op::erase, 0, threads); }
+    void paint_box(box3i b, Payload v, unsigned threads = 1) { apply(regions::box{b}, edit_op::paint, v, threads); }
+    void fill_sphere(glm::ivec3 c, int r, Payload v, unsigned threads = 1) {
+        apply(regions::sphere{c, r}, edit_op::fill, v, threads);
+    }
+    void erase_sphere(glm::ivec3 c, int r, unsigned threads = 1) { apply(regions::sphere{c, r}, edit_op::erase, 0, threads); }
+    void paint_sphere(glm::ivec3 c, int r, Payload v, unsigned threads = 1) {
+        apply(regions::sphere{c, r}, edit_op::paint, v, threads);
+    }
+    // radius 0: a one-voxel-thick 3D DDA line (regions::line_voxels); else a capsule.
+    void apply_line(glm::ivec3 a, glm::ivec3 b, int radius, edit_op op, Payload v, unsigned threads = 1);
+    // Copies src to src + offset (overlap allowed: the source is read first).
+    // replace = true: the destination becomes exactly the source, empty voxels included;
+    // else op says what a solid source voxel does: fill stamps it, erase carves the
+    // destination, paint recolours solid destination voxels.
+    void copy_region(box3i src, glm::ivec3 offset, edit_op op = edit_op::fill, bool replace = true);
+
+    // ---- maintenance and sync ----
+    // Recycles empty bricks and collapses uniform ones (see the top comment).
+    void settle() {
+        std::unique_lock lock(locks_.grow);
+        settle_locked();
+    }
+    // Word ranges changed since the last take (settles first). A single range covering
+    // the whole blob means "upload everything": the blob was re-laid out or resized.
+    std::vector<word_range> take_dirty_ranges() {
+        std::unique_lock lock(locks_.grow);
+        settle_locked();
+        for (auto b : dirty_.bricks()) meta_[b] &= ~dirty_bit;
+        return dirty_.take(std::uint32_t(words_.size()), bricks_off_, codec::words);
+    }
+    bool whole_blob_dirty() const { return dirty_.whole(); }
+    // Drops unused pool and page capacity (build() does this); the next growth doubles again.
+    void shrink_to_fit() {
+        std::unique_lock lock(locks_.grow);
+        std::uint32_t used = std::max(pool_.used(), 1u);
+        relayout(std::max(page_used_, 1u), used, used);
+        pool_.shrink_to(used);
+        meta_.resize(used);
+        owner_.resize(used);
+        dirty_.mark_whole();
+    }
+
+    // ---- what every structure exposes ----
+    std::span<const std::uint32_t> blob() const { return words_; }
+    std::size_t bytes() const { return words_.size() * sizeof(std::uint32_t); }
+    // Bytes without unused pool capacity (what a compacted save would need).
+    std::size_t used_bytes() const {
+        return (std::size_t(bricks_off_ - page_capacity_ * std::uint64_t(VX_BM_PAGE_WORDS)) +
+                std::size_t(page_used_) * VX_BM_PAGE_WORDS + std::size_t(pool_.used()) * codec::words) * 4;
+    }
+    double bytes_per_voxel() const { auto n = voxel_count(); return n ? double(bytes()) / double(n) : 0.0; }
+    std::uint64_t voxel_count() const {
+        return std::uint64_t(std::atomic_ref<std::int64_t>(const_cast<std::int64_t&>(voxel_count_)).load());
+    }
+    box3i bounds() const { return world_; }
+    double build_seconds() const { return build_seconds_; }
+    std::uint64_t brick_count() const { return pool_.live(); }
+    std::uint64_t free_bricks() const { return pool_.free_in_ring(); }
+    std::uint32_t brick_capacity() const { return top_grid::brick_capacity_; }
+    std::uint32_t bricks_used() const { return pool_.used(); }  // high-water mark
+    std::uint32_t page_count() const { return page_used_; }
+    std::uint32_t page_capacity() const { return page_capacity_; }
+
+private:
+    friend struct brickmap_io<Payload, BrickEdge>;
+    static constexpr std::uint32_t count_mask = 0xFFFFu, dirty_bit = 1u << 29, pending_bit = 1u << 30,
+                                   lock_bit = 1u << 31;
+    static constexpr std::uint32_t full = codec::voxels;
+
+    struct run {
+        std::uint32_t first, n;
+        static edit_op op(Payload v) { return v ? edit_op::fill : edit_op::erase; }
+    };
+    // What one thread changed; merged into the shared sets once per call (flush).
+    struct edit_ctx {
+        std::vector<std::uint32_t> bricks, words, pending;
+        std::int64_t delta = 0;
+    };
+    enum class status { ok, need_bricks, need_pages };
+
+    // Mutexes are not movable; a copied or moved brickmap gets fresh ones.
+    struct locks {
+        std::shared_mutex grow;
+        std::mutex side;  // dirty_ and pending_
+        std::mutex page;  // page creation (rare)
+        locks() = default;
+        locks(const locks&) {}
+        locks& operator=(const locks&) { return *this; }
+    };
+
+    static std::uint32_t local_index(glm::uvec3 q) {
+        constexpr std::uint32_t m = BrickEdge - 1;
+        return codec::index(q.x & m, q.y & m, q.z & m);
+    }
+    static bool fits_solid(Payload v) { return std::uint64_t(v) < (std::uint64_t(1) << 31); }
+    std::uint32_t* brick_ptr(std::uint32_t b) { return words_.data() + bricks_off_ + std::uint64_t(b) * codec::words; }
+    const std::uint32_t* brick_ptr(std::uint32_t b) const {
+        return words_.data() + bricks_off_ + std::uint64_t(b) * codec::words;
+    }
+
+    std::uint32_t lock_brick(std::uint32_t b) {
+        std::atomic_ref<std::uint32_t> m(meta_[b]);
+        for (;;) {
+            std::uint32_t old = m.fetch_or(lock_bit, std::memory_order_acquire);
+            if (!(old & lock_bit)) return old;
+            while (m.load(std::memory_order_relaxed) & lock_bit) std::this_thread::yield();
+        }
+    }
+    void unlock_brick(std::uint32_t b, std::uint32_t m) {
+        std::atomic_ref<std::uint32_t>(meta_[b]).store(m & ~lock_bit, std::memory_order_release);
+    }
+
+    // Publishes a thread's dirty bricks/words, pending bricks and count change. Called with
+    // the shared lock held, so settle() and take_dirty_ranges() (exclusive) never miss
+    // or race with it; the side mutex orders flushes among themselves.
+    void flush(edit_ctx& ctx) {
+        if (ctx.delta) std::atomic_ref<std::int64_t>(voxel_count_).fetch_add(ctx.delta);
+        ctx.delta = 0;
+        if (ctx.bricks.empty() && ctx.words.empty() && ctx.pending.empty()) return;
+        std::lock_guard lock(locks_.side);
+        dirty_.add_bricks(ctx.bricks);
+        dirty_.add_words(ctx.words);
+        pending_.insert(pending_.end(), ctx.pending.begin(), ctx.pending.end());
+        ctx.bricks.clear();  // keep the capacity: flush runs once per brick in set()/build
+        ctx.words.clear();
+        ctx.pending.clear();
+    }
+
+    // Word offset of the top cell of brick coordinate bc; 0 when its page is absent.
+    std::uint32_t find_cell(glm::uvec3 bc) const {
+        std::uint32_t page = codec::load(words_.data() + page_slot(bc));
+        if (page == VX_BM_EMPTY_PAGE) return 0;
+        return cell_offset(page, bc);
+    }
+    // As find_cell, creating the page; 0 with need = true when the page area is full.
+    std::uint32_t make_cell(glm::uvec3 bc, edit_ctx& ctx, bool& need) {
+        std::uint32_t slot = page_slot(bc);
+        std::atomic_ref<std::uint32_t> entry(words_[slot]);
+        std::uint32_t page = entry.load(std::memory_order_acquire);
+        if (page == VX_BM_EMPTY_PAGE) {
+            std::lock_guard lock(locks_.page);
+            page = entry.load(std::memory_order_acquire);
+            if (page == VX_BM_EMPTY_PAGE) {
+                if (page_used_ == page_capacity_) { need = true; return 0; }
+                page = page_used_++;
+                entry.store(page, std::memory_order_release);  // the page's cells are zero already
+                ctx.words.push_back(slot);
+            }
+        }
+        return cell_offset(page, bc);
+    }
+
+    // The core edit of one brick coordinate. `write(brick)` applies the edit to a locked
+    // brick and returns the codec result. `uniform`: the edit writes `v` (fill) or 0
+    // (erase) or paints `v`, which allows the shortcuts on empty/solid cells; `covered`:
+    // it covers every voxel of the brick, so a solid/empty cell can take it directly.
+    template <class Write>
+    status edit_brick(glm::uvec3 bc, edit_op op, Payload v, bool covered, edit_ctx& ctx, Write&& write,
+                      bool uniform = true) {
+        bool need = false;
+        std::uint32_t co = op == edit_op::fill ? make_cell(bc, ctx, need) : find_cell(bc);
+        if (!co) return need ? status::need_pages : status::ok;
+        std::atomic_ref<std::uint32_t> cell(words_[co]);
+        for (;;) {
+            std::uint32_t c = cell.load(std::memory_order_acquire);
+            if (c & VX_BM_CELL_IS_BRICK) {
+                std::uint32_t b = c >> 1;
+                std::uint32_t m = lock_brick(b);
+                typename codec::result r = write(brick_ptr(b));
+                std::uint32_t n = (m & count_mask) + std::uint32_t(r.delta);
+                m = (m & ~count_mask) | n;
+                if (r.changed && !(m & dirty_bit)) { m |= dirty_bit; ctx.bricks.push_back(b); }
+                if ((n == 0 || n == full) && !(m & pending_bit)) { m |= pending_bit; ctx.pending.push_back(b); }
+                ctx.delta += r.delta;
+                unlock_brick(b, m);
+                return status::ok;
+            }
+            auto s = Payload(c >> 1);
+            if (s == 0 && op != edit_op::fill) return status::ok;
+            if (uniform && s != 0 && op != edit_op::erase && s == v) return status::ok;
+            if (uniform && covered && (op == edit_op::erase || fits_solid(v))) {
+                std::uint32_t nc = op == edit_op::erase ? 0u : std::uint32_t(v) << 1;
+                if (cell.compare_exchange_strong(c, nc, std::memory_order_acq_rel)) {
+                    ctx.words.push_back(co);
+                    ctx.delta += std::int64_t(full) * ((nc ? 1 : 0) - (c ? 1 : 0));
+                    return status::ok;
+                }
+                continue;
+            }
+            std::uint32_t b = pool_.allocate();
+            if (b == brick_pool::none) return status::need_bricks;
+            std::uint32_t* brick = brick_ptr(b);
+            if (s) codec::fill_solid(brick, s);
+            std::atomic_ref<std::uint32_t> meta(meta_[b]);  // private until the cell is published
+            meta.store((meta.load(std::memory_order_relaxed) & dirty_bit) | (s ? full : 0u), std::memory_order_relaxed);
+            if (!cell.compare_exchange_strong(c, (b << 1) | VX_BM_CELL_IS_BRICK, std::memory_order_acq_rel)) {
+                if (s) codec::clear(brick);
+                meta.store(meta.load(std::memory_order_relaxed) & dirty_bit, std::memory_order_relaxed);
+                pool_.recycle(b);
+                continue;
+            }
+            owner_[b] = co;
+            ctx.words.push_back(co);
+            // The whole brick is new on the device: make sure it is uploaded.
+            std::uint32_t m = lock_brick(b);
+            if (!(m & dirty_bit)) { m |= dirty_bit; ctx.bricks.push_back(b); }
+            unlock_brick(b, m);
+        }
+    }
+
+    // edit_brick under a shared lock, growing (exclusive) and retrying when needed.
+    template <class Write>
+    void edit_with_growth(glm::uvec3 bc, edit_op op, Payload v, bool covered, edit_ctx& ctx, Write&& write,
+                          bool uniform = true) {
+        for (;;) {
+            std::shared_lock lock(locks_.grow);
+            status st = edit_brick(bc, op, v, covered, ctx, write, uniform);
+            if (st == status::ok) return flush(ctx);  // under the shared lock, see flush
+            std::uint32_t seen = st == status::need_bricks ? top_grid::brick_capacity_ : page_capacity_;
+            lock.unlock();
+            grow(st, seen);
+        }
+    }
+    void grow(status st, std::uint32_t seen) {
+        std::unique_lock lock(locks_.grow);
+        if (st == status::need_bricks) {
+            if (top_grid::brick_capacity_ != seen) return;  // another thread grew it
+            std::uint64_t cap = std::max<std::uint64_t>(2ull * seen, 16);
+            check_limit("brickmap brick count", cap, std::uint64_t(1) << 31);
+            relayout(page_capacity_, std::uint32_t(cap));
+            pool_.grow_to(top_grid::brick_capacity_);
+            meta_.resize(top_grid::brick_capacity_, 0);
+            owner_.resize(top_grid::brick_capacity_, 0);
+        } else {
+            if (page_capacity_ != seen) return;
+            relayout(std::uint32_t(std::min<std::uint64_t>(2ull * seen, page_table_words())),
+                     top_grid::brick_capacity_);
+        }
+        dirty_.mark_whole();
+    }
+
+    void settle_locked() {
+        for (auto b : pending_) {
+            std::uint32_t m = meta_[b] & ~pending_bit;
+            std::uint32_t n = m & count_mask;
+            std::uint32_t* brick = brick_ptr(b);
+            Payload v{};
+            std::uint32_t cell;
+            if (n == 0) cell = 0;  // empty bricks are all-zero words already
+            else if (n == full && codec::uniform(brick, v) && fits_solid(v)) cell = std::uint32_t(v) << 1;
+            else { meta_[b] = m; continue; }
+            codec::clear(brick);
+            words_[owner_[b]] = cell;
+            dirty_.add_word(owner_[b]);
+            meta_[b] = m & dirty_bit;
+            pool_.recycle(b);
+        }
+        pending_.clear();
+    }
+
+    template <class Region>
+    void bricks_of(const Region& region, std::vector<glm::uvec3>& list) const;
+    template <class Region>
+    void edit_region_brick(const Region& region, edit_op op, Payload value, glm::uvec3 bc, edit_ctx& ctx,
+                           std::shared_lock<std::shared_mutex>& lock);
+
+    template <class Region>
+    bool covers(const Region& region, const box3i& bb) const {
+        if (bb.min != glm::max(bb.min, world_.min) || bb.max != glm::min(bb.max, world_.max)) return false;
+        for (int k = 0; k < 8; ++k) {
+            glm::ivec3 p{k & 1 ? bb.max.x - 1 : bb.min.x, k & 2 ? bb.max.y - 1 : bb.min.y,
+                         k & 4 ? bb.max.z - 1 : bb.min.z};
+            if (!region.contains(p)) return false;
+        }
+        return true;
+    }
+
+    std::vector<std::uint32_t> meta_;  // per brick, see the diagram
+    std::vector<std::uint32_t> owner_; // per brick: word offset of the cell pointing to it
+    brick_pool pool_;
+    dirty_set dirty_;
+    std::vector<std::uint32_t> pending_;
+    std::int64_t voxel_count_ = 0;
+    double build_seconds_ = 0;
+    mutable locks locks_;
+};
+
+}  // namespace voxray
+
+#include "voxray/brickmap/brickmap_edit.hpp"
