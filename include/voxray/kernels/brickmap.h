@@ -1,11 +1,12 @@
-/* Traversal of the brickmap (layout/brickmap_layout.h): a nested DDA. The top walk steps
- * over top cells (the world scaled by 1/edge, which is exact, so its crossing t are bit for
- * bit those of the voxel walk at the same planes); at a non-empty cell it descends into a
- * voxel walk restricted to that cell (a brick, or a solid cell whose every voxel is solid),
- * and comes back up when the voxel walk leaves the cell. The hit voxel, t and face of a
- * solid cell are those of the voxel the ray enters: no "cell entry" shortcut.
+/* Traversal of the brickmap (layout/brickmap_layout.h): a nested DDA written as ONE walk
+ * whose cell size changes. At top level a cell is a whole top cell (brick edge wide,
+ * aligned); at a non-empty one the walk descends and steps voxel by voxel; when it leaves
+ * that top cell it ascends again. All cell boundaries are voxel planes, so every crossing
+ * t is computed exactly as the reference grid computes it: (plane - o) / d in voxel units.
+ * One walk (not a top walk plus a voxel walk) keeps the state small and gives SIMD lanes
+ * one move per step whatever level each lane is at. The hit voxel, t and face of a solid
+ * cell are those of the voxel the ray enters: no "cell entry" shortcut.
  * Needs prelude.h, ray.h, dda.h. Included once per lane set; no include guard on purpose. */
-
 VX_STRUCT(vx_brickmap)
     int ox, oy, oz;           /* world position of voxel (0,0,0) */
     int cells_x, cells_y, cells_z;
@@ -17,12 +18,17 @@ VX_STRUCT(vx_brickmap)
 VX_END_STRUCT(vx_brickmap)
 
 VX_STRUCT(vx_bm_state)
-    vx_dda top;               /* walk over top cells */
-    vx_dda fine;              /* walk over the voxels of `cell` while level is 1 */
-    vx_f32 dx, dy, dz;        /* the ray's direction, to find the entry voxel of a cell */
-    vx_u32 cell;              /* value of the top cell being walked at voxel level */
-    vx_u32 level;             /* 0: top cells, 1: voxels of `cell` */
-    vx_u32 status;            /* VX_STATUS_* of the ray */
+    vx_f32 ox, oy, oz;   /* ray origin relative to voxel (0,0,0) of the map */
+    vx_f32 dx, dy, dz;   /* direction, to find the voxel where a top cell is entered */
+    vx_f32 ix, iy, iz;   /* 1 / direction, 0 where the axis does not move */
+    vx_i32 sx, sy, sz;   /* step sign per axis */
+    vx_i32 cx, cy, cz;   /* min voxel of the current cell (a top cell or one voxel) */
+    vx_f32 nx, ny, nz;   /* t at which the ray leaves the current cell, per axis */
+    vx_f32 t, tmax;      /* entry t of the current cell; the ray's tmax */
+    vx_u32 face;         /* VX_FACE_* the current cell was entered through */
+    vx_u32 status;       /* VX_STATUS_* */
+    vx_u32 steps;        /* cells left behind, at both levels */
+    vx_u32 cell;         /* the top cell's value while walking its voxels; 0 at top level */
 VX_END_STRUCT(vx_bm_state)
 
 VX_FN vx_brickmap vx_bm_load(VX_BLOB blob) {
@@ -70,95 +76,132 @@ VX_FN vx_u32 vx_bm_brick(vx_brickmap g, vx_u32 cell) {
     return vx_sel((cell & VX_BM_CELL_IS_BRICK) != 0u, g.bricks + (cell >> 1u) * g.brick_words, 0u);
 }
 
-/* Starts the voxel walk inside the top cell the top walk is in (lanes in m). */
-VX_FN vx_bm_state vx_bm_descend(vx_bm_state s, vx_brickmap g, vx_u32 cell, vx_mask m) {
-    int edge = 1 << g.brick_bits;
-    vx_i32 bx = s.top.cx << g.brick_bits, by = s.top.cy << g.brick_bits, bz = s.top.cz << g.brick_bits;
-    vx_f32 t = s.top.t;
-    /* The entry voxel: on the axis the cell was entered through it is the first slab;
-     * on the others, the floor of the entry point clamped into the cell. */
-    vx_f32 px = vx_sel(m, s.fine.ox + s.dx * t, 0.0f);
-    vx_f32 py = vx_sel(m, s.fine.oy + s.dy * t, 0.0f);
-    vx_f32 pz = vx_sel(m, s.fine.oz + s.dz * t, 0.0f);
-    vx_i32 cx = vx_f2i(vx_floor(vx_fmin(vx_fmax(px - vx_i2f(bx), 0.0f), vx_i2f(edge - 1)))) + bx;
-    vx_i32 cy = vx_f2i(vx_floor(vx_fmin(vx_fmax(py - vx_i2f(by), 0.0f), vx_i2f(edge - 1)))) + by;
-    vx_i32 cz = vx_f2i(vx_floor(vx_fmin(vx_fmax(pz - vx_i2f(bz), 0.0f), vx_i2f(edge - 1)))) + bz;
-    vx_u32 f = s.top.face;
-    cx = vx_sel(f == VX_FACE_NEG_X, bx, vx_sel(f == VX_FACE_POS_X, bx + (edge - 1), cx));
-    cy = vx_sel(f == VX_FACE_NEG_Y, by, vx_sel(f == VX_FACE_POS_Y, by + (edge - 1), cy));
-    cz = vx_sel(f == VX_FACE_NEG_Z, bz, vx_sel(f == VX_FACE_POS_Z, bz + (edge - 1), cz));
-    s.fine.cx = vx_sel(m, cx, s.fine.cx);
-    s.fine.cy = vx_sel(m, cy, s.fine.cy);
-    s.fine.cz = vx_sel(m, cz, s.fine.cz);
-    s.fine.nx = vx_sel(m, vx_dda_exit_t(cx, s.fine.sx, s.fine.ox, s.fine.ix), s.fine.nx);
-    s.fine.ny = vx_sel(m, vx_dda_exit_t(cy, s.fine.sy, s.fine.oy, s.fine.iy), s.fine.ny);
-    s.fine.nz = vx_sel(m, vx_dda_exit_t(cz, s.fine.sz, s.fine.oz, s.fine.iz), s.fine.nz);
-    s.fine.t = vx_sel(m, t, s.fine.t);
-    s.fine.face = vx_sel(m, f, s.fine.face);
-    s.fine.status = vx_sel(m, VX_STATUS_ACTIVE, s.fine.status);
-    s.cell = vx_sel(m, cell, s.cell);
-    s.level = vx_sel(m, 1u, s.level);
-    return s;
+/* t at which the ray leaves the cell of `size` voxels whose min voxel is c, on one axis. */
+VX_FN vx_f32 vx_bm_exit_t(vx_i32 c, vx_i32 size, vx_i32 step, vx_f32 o, vx_f32 inv) {
+    return vx_sel(step != 0, (vx_i2f(c + vx_sel(step > 0, size, 0)) - o) * inv, VX_INF);
 }
 
 VX_FN vx_bm_state vx_bm_begin(vx_brickmap g, vx_ray r) {
     vx_bm_state s;
-    float edge = vx_i2f(1 << g.brick_bits);
-    s.top = vx_dda_begin_scaled(r, vx_i2f(g.ox), vx_i2f(g.oy), vx_i2f(g.oz), g.cells_x, g.cells_y, g.cells_z, edge);
-    /* Only the voxel walk's origin, 1/direction and steps are used until a descent. */
-    s.fine = vx_dda_begin_scaled(r, vx_i2f(g.ox), vx_i2f(g.oy), vx_i2f(g.oz), g.cells_x << g.brick_bits,
-                                 g.cells_y << g.brick_bits, g.cells_z << g.brick_bits, 1.0f);
-    s.fine.steps = s.top.steps;
-    s.dx = r.dx;
-    s.dy = r.dy;
-    s.dz = r.dz;
-    s.cell = vx_sel(s.top.status == VX_STATUS_ACTIVE, 0u, 0u);
-    s.level = s.cell;
-    s.status = s.top.status;
+    int edge = 1 << g.brick_bits;
+    /* The top-level start comes from the grid DDA over top cells (in scaled units, which
+     * are exact); the walk itself then stays in voxel units. */
+    vx_dda top = vx_dda_begin_scaled(r, vx_i2f(g.ox), vx_i2f(g.oy), vx_i2f(g.oz), g.cells_x, g.cells_y,
+                                     g.cells_z, vx_i2f(edge));
+    float to_voxels = vx_i2f(edge), to_inverse = 1.0f / vx_i2f(edge);
+    s.ox = top.ox * to_voxels; s.oy = top.oy * to_voxels; s.oz = top.oz * to_voxels;
+    s.ix = top.ix * to_inverse; s.iy = top.iy * to_inverse; s.iz = top.iz * to_inverse;
+    s.dx = r.dx; s.dy = r.dy; s.dz = r.dz;
+    s.sx = top.sx; s.sy = top.sy; s.sz = top.sz;
+    s.cx = top.cx << g.brick_bits; s.cy = top.cy << g.brick_bits; s.cz = top.cz << g.brick_bits;
+    s.nx = top.nx; s.ny = top.ny; s.nz = top.nz;
+    s.t = top.t;
+    s.tmax = top.tmax;
+    s.face = top.face;
+    s.status = top.status;
+    s.steps = top.steps;
+    s.cell = vx_sel(top.status == VX_STATUS_ACTIVE, 0u, 0u);
     return s;
 }
 
-/* One step: at top level, descend into a non-empty cell or move to the next cell; at
- * voxel level, a hit if the voxel is solid, else move on, back to the top walk when the
- * voxel walk leaves the cell. */
+/* Descends into the top cell the walk is in (lanes in m; its value is `cell`): the walk
+ * continues at the voxel where the ray entered it. On the axis the cell was entered
+ * through that is the first slab; on the others, the floor of the entry point, clamped. */
+VX_FN vx_bm_state vx_bm_descend(vx_bm_state s, vx_brickmap g, vx_u32 cell, vx_mask m) {
+    int last = (1 << g.brick_bits) - 1;
+    vx_f32 t = vx_sel(m, s.t, 0.0f);
+    vx_f32 px = vx_sel(m, s.ox + s.dx * t, 0.0f) - vx_i2f(s.cx);
+    vx_f32 py = vx_sel(m, s.oy + s.dy * t, 0.0f) - vx_i2f(s.cy);
+    vx_f32 pz = vx_sel(m, s.oz + s.dz * t, 0.0f) - vx_i2f(s.cz);
+    vx_i32 lx = vx_f2i(vx_floor(vx_fmin(vx_fmax(px, 0.0f), vx_i2f(last))));
+    vx_i32 ly = vx_f2i(vx_floor(vx_fmin(vx_fmax(py, 0.0f), vx_i2f(last))));
+    vx_i32 lz = vx_f2i(vx_floor(vx_fmin(vx_fmax(pz, 0.0f), vx_i2f(last))));
+    vx_u32 f = s.face;
+    lx = vx_sel(f == VX_FACE_NEG_X, 0, vx_sel(f == VX_FACE_POS_X, last, lx));
+    ly = vx_sel(f == VX_FACE_NEG_Y, 0, vx_sel(f == VX_FACE_POS_Y, last, ly));
+    lz = vx_sel(f == VX_FACE_NEG_Z, 0, vx_sel(f == VX_FACE_POS_Z, last, lz));
+    s.cx = vx_sel(m, s.cx + lx, s.cx);
+    s.cy = vx_sel(m, s.cy + ly, s.cy);
+    s.cz = vx_sel(m, s.cz + lz, s.cz);
+    s.nx = vx_sel(m, vx_bm_exit_t(s.cx, vx_sel(m, 1, 1), s.sx, s.ox, s.ix), s.nx);
+    s.ny = vx_sel(m, vx_bm_exit_t(s.cy, vx_sel(m, 1, 1), s.sy, s.oy, s.iy), s.ny);
+    s.nz = vx_sel(m, vx_bm_exit_t(s.cz, vx_sel(m, 1, 1), s.sz, s.oz, s.iz), s.nz);
+    s.cell = vx_sel(m, cell, s.cell);
+    return s;
+}
+
+/* Back to the top level for lanes in m: the top cell holding the current voxel. Leaving
+ * the map is a miss. */
+VX_FN vx_bm_state vx_bm_ascend(vx_bm_state s, vx_brickmap g, vx_mask m) {
+    int edge = 1 << g.brick_bits;
+    vx_i32 tx = s.cx >> g.brick_bits, ty = s.cy >> g.brick_bits, tz = s.cz >> g.brick_bits;
+    vx_mask outside = tx < 0 || ty < 0 || tz < 0 || tx >= g.cells_x || ty >= g.cells_y || tz >= g.cells_z;
+    s.cx = vx_sel(m, tx << g.brick_bits, s.cx);
+    s.cy = vx_sel(m, ty << g.brick_bits, s.cy);
+    s.cz = vx_sel(m, tz << g.brick_bits, s.cz);
+    vx_i32 size = vx_sel(m, edge, edge);
+    s.nx = vx_sel(m, vx_bm_exit_t(s.cx, size, s.sx, s.ox, s.ix), s.nx);
+    s.ny = vx_sel(m, vx_bm_exit_t(s.cy, size, s.sy, s.oy, s.iy), s.ny);
+    s.nz = vx_sel(m, vx_bm_exit_t(s.cz, size, s.sz, s.oz, s.iz), s.nz);
+    s.cell = vx_sel(m, 0u, s.cell);
+    s.status = vx_sel(m && outside, VX_STATUS_MISS, s.status);
+    return s;
+}
+
+/* Moves lanes in `go` to the next cell of their level (size voxels); like vx_dda_move,
+ * tied axes step together and passing tmax is a miss. */
+VX_FN vx_bm_state vx_bm_move(vx_bm_state s, vx_mask go, vx_i32 size) {
+    vx_f32 tnext = vx_fmin(s.nx, vx_fmin(s.ny, s.nz));
+    vx_mask mx = go && s.nx == tnext;
+    vx_mask my = go && s.ny == tnext;
+    vx_mask mz = go && s.nz == tnext;
+    s.cx = vx_sel(mx, s.cx + s.sx * size, s.cx);
+    s.cy = vx_sel(my, s.cy + s.sy * size, s.cy);
+    s.cz = vx_sel(mz, s.cz + s.sz * size, s.cz);
+    s.nx = vx_sel(mx, vx_bm_exit_t(s.cx, size, s.sx, s.ox, s.ix), s.nx);
+    s.ny = vx_sel(my, vx_bm_exit_t(s.cy, size, s.sy, s.oy, s.iy), s.ny);
+    s.nz = vx_sel(mz, vx_bm_exit_t(s.cz, size, s.sz, s.oz, s.iz), s.nz);
+    s.face = vx_sel(mx, vx_sel(s.sx > 0, VX_FACE_NEG_X, VX_FACE_POS_X),
+             vx_sel(my, vx_sel(s.sy > 0, VX_FACE_NEG_Y, VX_FACE_POS_Y),
+             vx_sel(mz, vx_sel(s.sz > 0, VX_FACE_NEG_Z, VX_FACE_POS_Z), s.face)));
+    s.status = vx_sel(go && tnext > s.tmax, VX_STATUS_MISS, s.status);
+    s.t = vx_sel(go, vx_fmax(s.t, tnext), s.t);
+    s.steps = s.steps + vx_sel(go, 1u, 0u);
+    return s;
+}
+
+/* One step of every live lane: look its cell up (a top cell through the page table, or a
+ * voxel's bit), then hit, descend, or move on (ascending when a voxel walk leaves its
+ * top cell). */
 VX_FN vx_bm_state vx_bm_step(VX_BLOB blob, vx_brickmap g, vx_bm_state s) {
+    int edge = 1 << g.brick_bits;
     vx_mask live = s.status == VX_STATUS_ACTIVE;
-    vx_mask at_top = live && s.level == 0u;
-    vx_mask at_voxel = live && s.level == 1u;
+    vx_mask at_voxel = live && s.cell != 0u;
+    vx_mask at_top = live && s.cell == 0u;
+    vx_i32 tx = s.cx >> g.brick_bits, ty = s.cy >> g.brick_bits, tz = s.cz >> g.brick_bits;
 
-    if (vx_any(at_top)) {
-        vx_u32 cell = vx_bm_cell(blob, g, s.top.cx, s.top.cy, s.top.cz, at_top);
-        vx_mask enter = at_top && cell != VX_BM_CELL_EMPTY;
-        vx_mask pass = at_top && !enter;
-        /* Guards on vx_any keep SIMD lanes from paying for work no lane needs. */
-        if (vx_any(enter)) s = vx_bm_descend(s, g, cell, enter);
-        if (vx_any(pass)) {
-            s.top = vx_dda_advance(s.top, pass, g.cells_x, g.cells_y, g.cells_z);
-            s.status = vx_sel(pass, s.top.status, s.status);
-        }
-    }
-    if (vx_any(at_voxel)) {
-        vx_u32 brick = vx_bm_brick(g, s.cell);
-        vx_mask in_brick = at_voxel && brick != 0u;
-        vx_u32 bit = vx_bm_voxel_bit(g, s.fine.cx, s.fine.cy, s.fine.cz);
-        vx_u32 word = vx_gather(blob, vx_sel(in_brick, brick + (bit >> 5u), 0u));
-        vx_mask solid = at_voxel && (!in_brick || ((word >> (bit & 31u)) & 1u) != 0u);
-        s.status = vx_sel(solid, VX_STATUS_HIT, s.status);
+    vx_u32 value = vx_bm_cell(blob, g, tx, ty, tz, at_top);
+    vx_mask enter = at_top && value != VX_BM_CELL_EMPTY;
+    vx_u32 brick = vx_bm_brick(g, s.cell);
+    vx_mask in_brick = at_voxel && brick != 0u;
+    vx_u32 bit = vx_bm_voxel_bit(g, s.cx, s.cy, s.cz);
+    vx_u32 word = vx_sel(in_brick, 0u, 0u);
+    if (vx_any(in_brick)) word = vx_gather(blob, vx_sel(in_brick, brick + (bit >> 5u), 0u));
+    vx_mask solid = at_voxel && (!in_brick || ((word >> (bit & 31u)) & 1u) != 0u);
+    s.status = vx_sel(solid, VX_STATUS_HIT, s.status);
+    /* Guards on vx_any keep SIMD lanes from paying for work no lane needs. */
+    if (vx_any(enter)) s = vx_bm_descend(s, g, value, enter);
 
-        vx_mask go = at_voxel && !solid;
-        s.fine = vx_dda_move(s.fine, go);
-        vx_mask ended = go && s.fine.status == VX_STATUS_MISS;  /* passed tmax */
-        s.status = vx_sel(ended, VX_STATUS_MISS, s.status);
-        vx_mask leaves = go && !ended &&
-                         ((s.fine.cx >> g.brick_bits) != s.top.cx || (s.fine.cy >> g.brick_bits) != s.top.cy ||
-                          (s.fine.cz >> g.brick_bits) != s.top.cz);
-        /* Back to the top walk: its next crossing is the one the voxel walk just made. */
-        if (vx_any(leaves)) {
-            s.level = vx_sel(leaves, 0u, s.level);
-            s.top = vx_dda_advance(s.top, leaves, g.cells_x, g.cells_y, g.cells_z);
-            s.status = vx_sel(leaves, s.top.status, s.status);
-        }
-    }
+    vx_mask go = live && !solid && !enter;
+    s = vx_bm_move(s, go, vx_sel(at_top, edge, 1));
+    vx_mask moving_on = go && s.status == VX_STATUS_ACTIVE;
+    vx_mask leaves_map = moving_on && at_top &&
+                         (s.cx < 0 || s.cy < 0 || s.cz < 0 || (s.cx >> g.brick_bits) >= g.cells_x ||
+                          (s.cy >> g.brick_bits) >= g.cells_y || (s.cz >> g.brick_bits) >= g.cells_z);
+    s.status = vx_sel(leaves_map, VX_STATUS_MISS, s.status);
+    vx_mask leaves_cell = moving_on && at_voxel &&
+                          ((s.cx >> g.brick_bits) != tx || (s.cy >> g.brick_bits) != ty || (s.cz >> g.brick_bits) != tz);
+    if (vx_any(leaves_cell)) s = vx_bm_ascend(s, g, leaves_cell);
     return s;
 }
 
@@ -167,17 +210,17 @@ VX_FN vx_hit vx_bm_finish(VX_BLOB blob, vx_brickmap g, vx_bm_state s) {
     vx_mask is_hit = s.status == VX_STATUS_HIT;
     vx_u32 brick = vx_bm_brick(g, vx_sel(is_hit, s.cell, 0u));
     vx_mask in_brick = is_hit && brick != 0u;
-    vx_u32 bit = vx_bm_voxel_bit(g, s.fine.cx, s.fine.cy, s.fine.cz);
+    vx_u32 bit = vx_bm_voxel_bit(g, s.cx, s.cy, s.cz);
     vx_u32 word = vx_gather(blob, vx_sel(in_brick, brick + g.occupancy_words + (bit >> g.values_per_word_bits), 0u));
     vx_u32 shift = (bit & ((1u << g.values_per_word_bits) - 1u)) * g.payload_bits;
     vx_u32 payload = vx_sel(in_brick, (word >> shift) & g.payload_mask, s.cell >> 1u);
-    h.t = vx_sel(is_hit, s.fine.t, VX_INF);
-    h.x = vx_sel(is_hit, s.fine.cx + g.ox, 0);
-    h.y = vx_sel(is_hit, s.fine.cy + g.oy, 0);
-    h.z = vx_sel(is_hit, s.fine.cz + g.oz, 0);
-    h.face = vx_sel(is_hit, s.fine.face, VX_FACE_NONE);
+    h.t = vx_sel(is_hit, s.t, VX_INF);
+    h.x = vx_sel(is_hit, s.cx + g.ox, 0);
+    h.y = vx_sel(is_hit, s.cy + g.oy, 0);
+    h.z = vx_sel(is_hit, s.cz + g.oz, 0);
+    h.face = vx_sel(is_hit, s.face, VX_FACE_NONE);
     h.material = vx_sel(is_hit, payload, 0u);
-    h.steps = s.top.steps + s.fine.steps;
+    h.steps = s.steps;
     h.status = s.status;
     return h;
 }
@@ -185,14 +228,18 @@ VX_FN vx_hit vx_bm_finish(VX_BLOB blob, vx_brickmap g, vx_bm_state s) {
 /* Per lane: a where m is set, else b (the CPU stream's lane refill). */
 VX_FN vx_bm_state vx_bm_select(vx_mask m, vx_bm_state a, vx_bm_state b) {
     vx_bm_state s;
-    s.top = vx_dda_select(m, a.top, b.top);
-    s.fine = vx_dda_select(m, a.fine, b.fine);
-    s.dx = vx_sel(m, a.dx, b.dx);
-    s.dy = vx_sel(m, a.dy, b.dy);
-    s.dz = vx_sel(m, a.dz, b.dz);
-    s.cell = vx_sel(m, a.cell, b.cell);
-    s.level = vx_sel(m, a.level, b.level);
+    s.ox = vx_sel(m, a.ox, b.ox); s.oy = vx_sel(m, a.oy, b.oy); s.oz = vx_sel(m, a.oz, b.oz);
+    s.dx = vx_sel(m, a.dx, b.dx); s.dy = vx_sel(m, a.dy, b.dy); s.dz = vx_sel(m, a.dz, b.dz);
+    s.ix = vx_sel(m, a.ix, b.ix); s.iy = vx_sel(m, a.iy, b.iy); s.iz = vx_sel(m, a.iz, b.iz);
+    s.sx = vx_sel(m, a.sx, b.sx); s.sy = vx_sel(m, a.sy, b.sy); s.sz = vx_sel(m, a.sz, b.sz);
+    s.cx = vx_sel(m, a.cx, b.cx); s.cy = vx_sel(m, a.cy, b.cy); s.cz = vx_sel(m, a.cz, b.cz);
+    s.nx = vx_sel(m, a.nx, b.nx); s.ny = vx_sel(m, a.ny, b.ny); s.nz = vx_sel(m, a.nz, b.nz);
+    s.t = vx_sel(m, a.t, b.t);
+    s.tmax = vx_sel(m, a.tmax, b.tmax);
+    s.face = vx_sel(m, a.face, b.face);
     s.status = vx_sel(m, a.status, b.status);
+    s.steps = vx_sel(m, a.steps, b.steps);
+    s.cell = vx_sel(m, a.cell, b.cell);
     return s;
 }
 

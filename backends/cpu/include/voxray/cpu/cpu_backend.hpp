@@ -76,9 +76,13 @@ void trace_stream(const std::uint32_t* blob, const ray* rays, hit* hits, std::si
         q.state = K::begin(g, q.rays, mode);
     }
     // Writes out finished lanes and restarts them; false once the group has nothing left.
+    // Refilling costs a finish, a begin and a lane merge of the whole state, so it waits
+    // until half of the lanes are done (or the rays run out and the group drains).
     auto refill = [&](group& q) {
         vx_mask finished = q.state.status != VX_STATUS_ACTIVE;
-        if (!vx_any(finished)) return true;
+        int done = 0;
+        for (int k = 0; k < W; ++k) done += finished[k] != 0;
+        if (done == 0 || (done < W / 2 && next < count)) return true;
         vx_hit h = K::finish(blob, g, q.state);
         vx_mask restart = finished & 0;
         bool busy = false;
