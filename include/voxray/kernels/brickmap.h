@@ -18,16 +18,9 @@ VX_STRUCT(vx_brickmap)
 VX_END_STRUCT(vx_brickmap)
 
 VX_STRUCT(vx_bm_state)
-    vx_f32 ox, oy, oz;   /* ray origin relative to voxel (0,0,0) of the map */
+    vx_dda w;            /* the walk, in voxel units; w.c is the min voxel of the current
+                            cell: a whole top cell (aligned) or a single voxel */
     vx_f32 dx, dy, dz;   /* direction, to find the voxel where a top cell is entered */
-    vx_f32 ix, iy, iz;   /* 1 / direction, 0 where the axis does not move */
-    vx_i32 sx, sy, sz;   /* step sign per axis */
-    vx_i32 cx, cy, cz;   /* min voxel of the current cell (a top cell or one voxel) */
-    vx_f32 nx, ny, nz;   /* t at which the ray leaves the current cell, per axis */
-    vx_f32 t, tmax;      /* entry t of the current cell; the ray's tmax */
-    vx_u32 face;         /* VX_FACE_* the current cell was entered through */
-    vx_u32 status;       /* VX_STATUS_* */
-    vx_u32 steps;        /* cells left behind, at both levels */
     vx_u32 cell;         /* the top cell's value while walking its voxels; 0 at top level */
 VX_END_STRUCT(vx_bm_state)
 
@@ -76,31 +69,19 @@ VX_FN vx_u32 vx_bm_brick(vx_brickmap g, vx_u32 cell) {
     return vx_sel((cell & VX_BM_CELL_IS_BRICK) != 0u, g.bricks + (cell >> 1u) * g.brick_words, 0u);
 }
 
-/* t at which the ray leaves the cell of `size` voxels whose min voxel is c, on one axis. */
-VX_FN vx_f32 vx_bm_exit_t(vx_i32 c, vx_i32 size, vx_i32 step, vx_f32 o, vx_f32 inv) {
-    return vx_sel(step != 0, (vx_i2f(c + vx_sel(step > 0, size, 0)) - o) * inv, VX_INF);
-}
-
 VX_FN vx_bm_state vx_bm_begin(vx_brickmap g, vx_ray r) {
     vx_bm_state s;
     int edge = 1 << g.brick_bits;
-    /* The top-level start comes from the grid DDA over top cells (in scaled units, which
-     * are exact); the walk itself then stays in voxel units. */
-    vx_dda top = vx_dda_begin_scaled(r, vx_i2f(g.ox), vx_i2f(g.oy), vx_i2f(g.oz), g.cells_x, g.cells_y,
-                                     g.cells_z, vx_i2f(edge));
+    /* Start with the grid DDA over top cells (in scaled units, which are exact), then
+     * express it in voxel units: same t, origin and 1/direction scaled back. */
+    s.w = vx_dda_begin_scaled(r, vx_i2f(g.ox), vx_i2f(g.oy), vx_i2f(g.oz), g.cells_x, g.cells_y, g.cells_z,
+                              vx_i2f(edge));
     float to_voxels = vx_i2f(edge), to_inverse = 1.0f / vx_i2f(edge);
-    s.ox = top.ox * to_voxels; s.oy = top.oy * to_voxels; s.oz = top.oz * to_voxels;
-    s.ix = top.ix * to_inverse; s.iy = top.iy * to_inverse; s.iz = top.iz * to_inverse;
+    s.w.ox = s.w.ox * to_voxels; s.w.oy = s.w.oy * to_voxels; s.w.oz = s.w.oz * to_voxels;
+    s.w.ix = s.w.ix * to_inverse; s.w.iy = s.w.iy * to_inverse; s.w.iz = s.w.iz * to_inverse;
+    s.w.cx = s.w.cx << g.brick_bits; s.w.cy = s.w.cy << g.brick_bits; s.w.cz = s.w.cz << g.brick_bits;
     s.dx = r.dx; s.dy = r.dy; s.dz = r.dz;
-    s.sx = top.sx; s.sy = top.sy; s.sz = top.sz;
-    s.cx = top.cx << g.brick_bits; s.cy = top.cy << g.brick_bits; s.cz = top.cz << g.brick_bits;
-    s.nx = top.nx; s.ny = top.ny; s.nz = top.nz;
-    s.t = top.t;
-    s.tmax = top.tmax;
-    s.face = top.face;
-    s.status = top.status;
-    s.steps = top.steps;
-    s.cell = vx_sel(top.status == VX_STATUS_ACTIVE, 0u, 0u);
+    s.cell = vx_sel(s.w.status == VX_STATUS_ACTIVE, 0u, 0u);
     return s;
 }
 
@@ -109,23 +90,23 @@ VX_FN vx_bm_state vx_bm_begin(vx_brickmap g, vx_ray r) {
  * through that is the first slab; on the others, the floor of the entry point, clamped. */
 VX_FN vx_bm_state vx_bm_descend(vx_bm_state s, vx_brickmap g, vx_u32 cell, vx_mask m) {
     int last = (1 << g.brick_bits) - 1;
-    vx_f32 t = vx_sel(m, s.t, 0.0f);
-    vx_f32 px = vx_sel(m, s.ox + s.dx * t, 0.0f) - vx_i2f(s.cx);
-    vx_f32 py = vx_sel(m, s.oy + s.dy * t, 0.0f) - vx_i2f(s.cy);
-    vx_f32 pz = vx_sel(m, s.oz + s.dz * t, 0.0f) - vx_i2f(s.cz);
+    vx_f32 t = vx_sel(m, s.w.t, 0.0f);
+    vx_f32 px = vx_sel(m, s.w.ox + s.dx * t, 0.0f) - vx_i2f(s.w.cx);
+    vx_f32 py = vx_sel(m, s.w.oy + s.dy * t, 0.0f) - vx_i2f(s.w.cy);
+    vx_f32 pz = vx_sel(m, s.w.oz + s.dz * t, 0.0f) - vx_i2f(s.w.cz);
     vx_i32 lx = vx_f2i(vx_floor(vx_fmin(vx_fmax(px, 0.0f), vx_i2f(last))));
     vx_i32 ly = vx_f2i(vx_floor(vx_fmin(vx_fmax(py, 0.0f), vx_i2f(last))));
     vx_i32 lz = vx_f2i(vx_floor(vx_fmin(vx_fmax(pz, 0.0f), vx_i2f(last))));
-    vx_u32 f = s.face;
+    vx_u32 f = s.w.face;
     lx = vx_sel(f == VX_FACE_NEG_X, 0, vx_sel(f == VX_FACE_POS_X, last, lx));
     ly = vx_sel(f == VX_FACE_NEG_Y, 0, vx_sel(f == VX_FACE_POS_Y, last, ly));
     lz = vx_sel(f == VX_FACE_NEG_Z, 0, vx_sel(f == VX_FACE_POS_Z, last, lz));
-    s.cx = vx_sel(m, s.cx + lx, s.cx);
-    s.cy = vx_sel(m, s.cy + ly, s.cy);
-    s.cz = vx_sel(m, s.cz + lz, s.cz);
-    s.nx = vx_sel(m, vx_bm_exit_t(s.cx, vx_sel(m, 1, 1), s.sx, s.ox, s.ix), s.nx);
-    s.ny = vx_sel(m, vx_bm_exit_t(s.cy, vx_sel(m, 1, 1), s.sy, s.oy, s.iy), s.ny);
-    s.nz = vx_sel(m, vx_bm_exit_t(s.cz, vx_sel(m, 1, 1), s.sz, s.oz, s.iz), s.nz);
+    s.w.cx = vx_sel(m, s.w.cx + lx, s.w.cx);
+    s.w.cy = vx_sel(m, s.w.cy + ly, s.w.cy);
+    s.w.cz = vx_sel(m, s.w.cz + lz, s.w.cz);
+    s.w.nx = vx_sel(m, vx_dda_exit_t_sized(s.w.cx, vx_sel(m, 1, 1), s.w.sx, s.w.ox, s.w.ix), s.w.nx);
+    s.w.ny = vx_sel(m, vx_dda_exit_t_sized(s.w.cy, vx_sel(m, 1, 1), s.w.sy, s.w.oy, s.w.iy), s.w.ny);
+    s.w.nz = vx_sel(m, vx_dda_exit_t_sized(s.w.cz, vx_sel(m, 1, 1), s.w.sz, s.w.oz, s.w.iz), s.w.nz);
     s.cell = vx_sel(m, cell, s.cell);
     return s;
 }
@@ -134,39 +115,17 @@ VX_FN vx_bm_state vx_bm_descend(vx_bm_state s, vx_brickmap g, vx_u32 cell, vx_ma
  * the map is a miss. */
 VX_FN vx_bm_state vx_bm_ascend(vx_bm_state s, vx_brickmap g, vx_mask m) {
     int edge = 1 << g.brick_bits;
-    vx_i32 tx = s.cx >> g.brick_bits, ty = s.cy >> g.brick_bits, tz = s.cz >> g.brick_bits;
+    vx_i32 tx = s.w.cx >> g.brick_bits, ty = s.w.cy >> g.brick_bits, tz = s.w.cz >> g.brick_bits;
     vx_mask outside = tx < 0 || ty < 0 || tz < 0 || tx >= g.cells_x || ty >= g.cells_y || tz >= g.cells_z;
-    s.cx = vx_sel(m, tx << g.brick_bits, s.cx);
-    s.cy = vx_sel(m, ty << g.brick_bits, s.cy);
-    s.cz = vx_sel(m, tz << g.brick_bits, s.cz);
+    s.w.cx = vx_sel(m, tx << g.brick_bits, s.w.cx);
+    s.w.cy = vx_sel(m, ty << g.brick_bits, s.w.cy);
+    s.w.cz = vx_sel(m, tz << g.brick_bits, s.w.cz);
     vx_i32 size = vx_sel(m, edge, edge);
-    s.nx = vx_sel(m, vx_bm_exit_t(s.cx, size, s.sx, s.ox, s.ix), s.nx);
-    s.ny = vx_sel(m, vx_bm_exit_t(s.cy, size, s.sy, s.oy, s.iy), s.ny);
-    s.nz = vx_sel(m, vx_bm_exit_t(s.cz, size, s.sz, s.oz, s.iz), s.nz);
+    s.w.nx = vx_sel(m, vx_dda_exit_t_sized(s.w.cx, size, s.w.sx, s.w.ox, s.w.ix), s.w.nx);
+    s.w.ny = vx_sel(m, vx_dda_exit_t_sized(s.w.cy, size, s.w.sy, s.w.oy, s.w.iy), s.w.ny);
+    s.w.nz = vx_sel(m, vx_dda_exit_t_sized(s.w.cz, size, s.w.sz, s.w.oz, s.w.iz), s.w.nz);
     s.cell = vx_sel(m, 0u, s.cell);
-    s.status = vx_sel(m && outside, VX_STATUS_MISS, s.status);
-    return s;
-}
-
-/* Moves lanes in `go` to the next cell of their level (size voxels); like vx_dda_move,
- * tied axes step together and passing tmax is a miss. */
-VX_FN vx_bm_state vx_bm_move(vx_bm_state s, vx_mask go, vx_i32 size) {
-    vx_f32 tnext = vx_fmin(s.nx, vx_fmin(s.ny, s.nz));
-    vx_mask mx = go && s.nx == tnext;
-    vx_mask my = go && s.ny == tnext;
-    vx_mask mz = go && s.nz == tnext;
-    s.cx = vx_sel(mx, s.cx + s.sx * size, s.cx);
-    s.cy = vx_sel(my, s.cy + s.sy * size, s.cy);
-    s.cz = vx_sel(mz, s.cz + s.sz * size, s.cz);
-    s.nx = vx_sel(mx, vx_bm_exit_t(s.cx, size, s.sx, s.ox, s.ix), s.nx);
-    s.ny = vx_sel(my, vx_bm_exit_t(s.cy, size, s.sy, s.oy, s.iy), s.ny);
-    s.nz = vx_sel(mz, vx_bm_exit_t(s.cz, size, s.sz, s.oz, s.iz), s.nz);
-    s.face = vx_sel(mx, vx_sel(s.sx > 0, VX_FACE_NEG_X, VX_FACE_POS_X),
-             vx_sel(my, vx_sel(s.sy > 0, VX_FACE_NEG_Y, VX_FACE_POS_Y),
-             vx_sel(mz, vx_sel(s.sz > 0, VX_FACE_NEG_Z, VX_FACE_POS_Z), s.face)));
-    s.status = vx_sel(go && tnext > s.tmax, VX_STATUS_MISS, s.status);
-    s.t = vx_sel(go, vx_fmax(s.t, tnext), s.t);
-    s.steps = s.steps + vx_sel(go, 1u, 0u);
+    s.w.status = vx_sel(m && outside, VX_STATUS_MISS, s.w.status);
     return s;
 }
 
@@ -175,70 +134,63 @@ VX_FN vx_bm_state vx_bm_move(vx_bm_state s, vx_mask go, vx_i32 size) {
  * top cell). */
 VX_FN vx_bm_state vx_bm_step(VX_BLOB blob, vx_brickmap g, vx_bm_state s) {
     int edge = 1 << g.brick_bits;
-    vx_mask live = s.status == VX_STATUS_ACTIVE;
+    vx_mask live = s.w.status == VX_STATUS_ACTIVE;
     vx_mask at_voxel = live && s.cell != 0u;
     vx_mask at_top = live && s.cell == 0u;
-    vx_i32 tx = s.cx >> g.brick_bits, ty = s.cy >> g.brick_bits, tz = s.cz >> g.brick_bits;
+    vx_i32 tx = s.w.cx >> g.brick_bits, ty = s.w.cy >> g.brick_bits, tz = s.w.cz >> g.brick_bits;
 
     vx_u32 value = vx_bm_cell(blob, g, tx, ty, tz, at_top);
     vx_mask enter = at_top && value != VX_BM_CELL_EMPTY;
     vx_u32 brick = vx_bm_brick(g, s.cell);
     vx_mask in_brick = at_voxel && brick != 0u;
-    vx_u32 bit = vx_bm_voxel_bit(g, s.cx, s.cy, s.cz);
+    vx_u32 bit = vx_bm_voxel_bit(g, s.w.cx, s.w.cy, s.w.cz);
     vx_u32 word = vx_sel(in_brick, 0u, 0u);
     if (vx_any(in_brick)) word = vx_gather(blob, vx_sel(in_brick, brick + (bit >> 5u), 0u));
     vx_mask solid = at_voxel && (!in_brick || ((word >> (bit & 31u)) & 1u) != 0u);
-    s.status = vx_sel(solid, VX_STATUS_HIT, s.status);
+    s.w.status = vx_sel(solid, VX_STATUS_HIT, s.w.status);
     /* Guards on vx_any keep SIMD lanes from paying for work no lane needs. */
     if (vx_any(enter)) s = vx_bm_descend(s, g, value, enter);
 
     vx_mask go = live && !solid && !enter;
-    s = vx_bm_move(s, go, vx_sel(at_top, edge, 1));
-    vx_mask moving_on = go && s.status == VX_STATUS_ACTIVE;
+    s.w = vx_dda_move_sized(s.w, go, vx_sel(at_top, edge, 1));
+    vx_mask moving_on = go && s.w.status == VX_STATUS_ACTIVE;
     vx_mask leaves_map = moving_on && at_top &&
-                         (s.cx < 0 || s.cy < 0 || s.cz < 0 || (s.cx >> g.brick_bits) >= g.cells_x ||
-                          (s.cy >> g.brick_bits) >= g.cells_y || (s.cz >> g.brick_bits) >= g.cells_z);
-    s.status = vx_sel(leaves_map, VX_STATUS_MISS, s.status);
+                         (s.w.cx < 0 || s.w.cy < 0 || s.w.cz < 0 || (s.w.cx >> g.brick_bits) >= g.cells_x ||
+                          (s.w.cy >> g.brick_bits) >= g.cells_y || (s.w.cz >> g.brick_bits) >= g.cells_z);
+    s.w.status = vx_sel(leaves_map, VX_STATUS_MISS, s.w.status);
     vx_mask leaves_cell = moving_on && at_voxel &&
-                          ((s.cx >> g.brick_bits) != tx || (s.cy >> g.brick_bits) != ty || (s.cz >> g.brick_bits) != tz);
+                          ((s.w.cx >> g.brick_bits) != tx || (s.w.cy >> g.brick_bits) != ty || (s.w.cz >> g.brick_bits) != tz);
     if (vx_any(leaves_cell)) s = vx_bm_ascend(s, g, leaves_cell);
     return s;
 }
 
 VX_FN vx_hit vx_bm_finish(VX_BLOB blob, vx_brickmap g, vx_bm_state s) {
     vx_hit h;
-    vx_mask is_hit = s.status == VX_STATUS_HIT;
+    vx_mask is_hit = s.w.status == VX_STATUS_HIT;
     vx_u32 brick = vx_bm_brick(g, vx_sel(is_hit, s.cell, 0u));
     vx_mask in_brick = is_hit && brick != 0u;
-    vx_u32 bit = vx_bm_voxel_bit(g, s.cx, s.cy, s.cz);
+    vx_u32 bit = vx_bm_voxel_bit(g, s.w.cx, s.w.cy, s.w.cz);
     vx_u32 word = vx_gather(blob, vx_sel(in_brick, brick + g.occupancy_words + (bit >> g.values_per_word_bits), 0u));
     vx_u32 shift = (bit & ((1u << g.values_per_word_bits) - 1u)) * g.payload_bits;
     vx_u32 payload = vx_sel(in_brick, (word >> shift) & g.payload_mask, s.cell >> 1u);
-    h.t = vx_sel(is_hit, s.t, VX_INF);
-    h.x = vx_sel(is_hit, s.cx + g.ox, 0);
-    h.y = vx_sel(is_hit, s.cy + g.oy, 0);
-    h.z = vx_sel(is_hit, s.cz + g.oz, 0);
-    h.face = vx_sel(is_hit, s.face, VX_FACE_NONE);
+    h.t = vx_sel(is_hit, s.w.t, VX_INF);
+    h.x = vx_sel(is_hit, s.w.cx + g.ox, 0);
+    h.y = vx_sel(is_hit, s.w.cy + g.oy, 0);
+    h.z = vx_sel(is_hit, s.w.cz + g.oz, 0);
+    h.face = vx_sel(is_hit, s.w.face, VX_FACE_NONE);
     h.material = vx_sel(is_hit, payload, 0u);
-    h.steps = s.steps;
-    h.status = s.status;
+    h.steps = s.w.steps;
+    h.status = s.w.status;
     return h;
 }
 
 /* Per lane: a where m is set, else b (the CPU stream's lane refill). */
 VX_FN vx_bm_state vx_bm_select(vx_mask m, vx_bm_state a, vx_bm_state b) {
     vx_bm_state s;
-    s.ox = vx_sel(m, a.ox, b.ox); s.oy = vx_sel(m, a.oy, b.oy); s.oz = vx_sel(m, a.oz, b.oz);
-    s.dx = vx_sel(m, a.dx, b.dx); s.dy = vx_sel(m, a.dy, b.dy); s.dz = vx_sel(m, a.dz, b.dz);
-    s.ix = vx_sel(m, a.ix, b.ix); s.iy = vx_sel(m, a.iy, b.iy); s.iz = vx_sel(m, a.iz, b.iz);
-    s.sx = vx_sel(m, a.sx, b.sx); s.sy = vx_sel(m, a.sy, b.sy); s.sz = vx_sel(m, a.sz, b.sz);
-    s.cx = vx_sel(m, a.cx, b.cx); s.cy = vx_sel(m, a.cy, b.cy); s.cz = vx_sel(m, a.cz, b.cz);
-    s.nx = vx_sel(m, a.nx, b.nx); s.ny = vx_sel(m, a.ny, b.ny); s.nz = vx_sel(m, a.nz, b.nz);
-    s.t = vx_sel(m, a.t, b.t);
-    s.tmax = vx_sel(m, a.tmax, b.tmax);
-    s.face = vx_sel(m, a.face, b.face);
-    s.status = vx_sel(m, a.status, b.status);
-    s.steps = vx_sel(m, a.steps, b.steps);
+    s.w = vx_dda_select(m, a.w, b.w);
+    s.dx = vx_sel(m, a.dx, b.dx);
+    s.dy = vx_sel(m, a.dy, b.dy);
+    s.dz = vx_sel(m, a.dz, b.dz);
     s.cell = vx_sel(m, a.cell, b.cell);
     return s;
 }
@@ -248,6 +200,6 @@ VX_FN vx_hit vx_brickmap_trace(VX_BLOB blob, vx_ray r, uint mode) {
     VX_UNUSED(mode);
     vx_brickmap g = vx_bm_load(blob);
     vx_bm_state s = vx_bm_begin(g, r);
-    while (vx_any(s.status == VX_STATUS_ACTIVE)) s = vx_bm_step(blob, g, s);
+    while (vx_any(s.w.status == VX_STATUS_ACTIVE)) s = vx_bm_step(blob, g, s);
     return vx_bm_finish(blob, g, s);
 }

@@ -59,6 +59,12 @@ VX_FN vx_i32 vx_dda_start_cell(vx_f32 p, int extent) {
     return vx_f2i(vx_floor(q));
 }
 
+/* t at which the ray leaves, along one axis, the cell of `size` voxels whose min voxel
+ * is c (the brickmap walks cells of several sizes in voxel units). */
+VX_FN vx_f32 vx_dda_exit_t_sized(vx_i32 c, vx_i32 size, vx_i32 step, vx_f32 o, vx_f32 inv) {
+    return vx_sel(step != 0, (vx_i2f(c + vx_sel(step > 0, size, 0)) - o) * inv, VX_INF);
+}
+
 /* t at which the ray leaves cell c along one axis. */
 VX_FN vx_f32 vx_dda_exit_t(vx_i32 c, vx_i32 step, vx_f32 o, vx_f32 inv) {
     return vx_sel(step != 0, (vx_i2f(c + vx_sel(step > 0, 1, 0)) - o) * inv, VX_INF);
@@ -116,22 +122,23 @@ VX_FN vx_dda vx_dda_begin_scaled(vx_ray r, float gx, float gy, float gz, int ex,
     return d;
 }
 
-/* Moves lanes in `go` to the next cell; those that pass tmax miss. Every axis whose
- * boundary lies at the nearest t steps at once: a ray through an edge or corner goes
- * straight to the diagonal cell instead of visiting side cells for zero length (which
- * would report hits on voxels the ray only touches). */
-VX_FN vx_dda vx_dda_move(vx_dda d, vx_mask go) {
+/* Moves lanes in `go` to the next cell, `size` voxels on (1 for a plain grid walk);
+ * those that pass tmax miss. Every axis whose boundary lies at the nearest t steps at
+ * once: a ray through an edge or corner goes straight to the diagonal cell instead of
+ * visiting side cells for zero length (which would report hits on voxels the ray only
+ * touches). */
+VX_FN vx_dda vx_dda_move_sized(vx_dda d, vx_mask go, vx_i32 size) {
     vx_f32 tnext = vx_fmin(d.nx, vx_fmin(d.ny, d.nz));
     vx_mask mx = go && d.nx == tnext;
     vx_mask my = go && d.ny == tnext;
     vx_mask mz = go && d.nz == tnext;
 
-    d.cx = vx_sel(mx, d.cx + d.sx, d.cx);
-    d.cy = vx_sel(my, d.cy + d.sy, d.cy);
-    d.cz = vx_sel(mz, d.cz + d.sz, d.cz);
-    d.nx = vx_sel(mx, vx_dda_exit_t(d.cx, d.sx, d.ox, d.ix), d.nx);
-    d.ny = vx_sel(my, vx_dda_exit_t(d.cy, d.sy, d.oy, d.iy), d.ny);
-    d.nz = vx_sel(mz, vx_dda_exit_t(d.cz, d.sz, d.oz, d.iz), d.nz);
+    d.cx = vx_sel(mx, d.cx + d.sx * size, d.cx);
+    d.cy = vx_sel(my, d.cy + d.sy * size, d.cy);
+    d.cz = vx_sel(mz, d.cz + d.sz * size, d.cz);
+    d.nx = vx_sel(mx, vx_dda_exit_t_sized(d.cx, size, d.sx, d.ox, d.ix), d.nx);
+    d.ny = vx_sel(my, vx_dda_exit_t_sized(d.cy, size, d.sy, d.oy, d.iy), d.ny);
+    d.nz = vx_sel(mz, vx_dda_exit_t_sized(d.cz, size, d.sz, d.oz, d.iz), d.nz);
     /* On an edge or corner the entry face is a tie; report the first stepped axis. */
     d.face = vx_sel(mx, vx_sel(d.sx > 0, VX_FACE_NEG_X, VX_FACE_POS_X),
              vx_sel(my, vx_sel(d.sy > 0, VX_FACE_NEG_Y, VX_FACE_POS_Y),
@@ -141,6 +148,9 @@ VX_FN vx_dda vx_dda_move(vx_dda d, vx_mask go) {
     d.steps = d.steps + vx_sel(go, 1u, 0u);
     return d;
 }
+
+/* vx_dda_move_sized over unit cells. */
+VX_FN vx_dda vx_dda_move(vx_dda d, vx_mask go) { return vx_dda_move_sized(d, go, vx_sel(go, 1, 1)); }
 
 /* vx_dda_move, and lanes that leave the grid [0, e) miss. */
 VX_FN vx_dda vx_dda_advance(vx_dda d, vx_mask go, int ex, int ey, int ez) {

@@ -79,7 +79,7 @@ void trace_stream(const std::uint32_t* blob, const ray* rays, hit* hits, std::si
     // Refilling costs a finish, a begin and a lane merge of the whole state, so it waits
     // until half of the lanes are done (or the rays run out and the group drains).
     auto refill = [&](group& q) {
-        vx_mask finished = q.state.status != VX_STATUS_ACTIVE;
+        vx_mask finished = K::status(q.state) != VX_STATUS_ACTIVE;
         int done = 0;
         for (int k = 0; k < W; ++k) done += finished[k] != 0;
         if (done == 0 || (done < W / 2 && next < count)) return true;
