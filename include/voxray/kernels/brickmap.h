@@ -129,18 +129,22 @@ VX_FN vx_bm_state vx_bm_ascend(vx_bm_state s, vx_brickmap g, vx_mask m) {
     return s;
 }
 
-/* One step of every live lane: look its cell up (a top cell through the page table, or a
- * voxel's bit), then hit, descend, or move on (ascending when a voxel walk leaves its
- * top cell). */
+/* One step of every live lane: at top level, look the top cell up (through the page
+ * table) and descend into it if it is not empty; then, at voxel level (just descended
+ * too, so a ray that hits the voxel it enters a cell by needs no extra step), test the
+ * voxel; then hit or move on, ascending when a voxel walk leaves its top cell. */
 VX_FN vx_bm_state vx_bm_step(VX_BLOB blob, vx_brickmap g, vx_bm_state s) {
     int edge = 1 << g.brick_bits;
     vx_mask live = s.w.status == VX_STATUS_ACTIVE;
-    vx_mask at_voxel = live && s.cell != 0u;
     vx_mask at_top = live && s.cell == 0u;
     vx_i32 tx = s.w.cx >> g.brick_bits, ty = s.w.cy >> g.brick_bits, tz = s.w.cz >> g.brick_bits;
 
     vx_u32 value = vx_bm_cell(blob, g, tx, ty, tz, at_top);
     vx_mask enter = at_top && value != VX_BM_CELL_EMPTY;
+    /* Guards on vx_any keep SIMD lanes from paying for work no lane needs. */
+    if (vx_any(enter)) s = vx_bm_descend(s, g, value, enter);
+
+    vx_mask at_voxel = live && s.cell != 0u;
     vx_u32 brick = vx_bm_brick(g, s.cell);
     vx_mask in_brick = at_voxel && brick != 0u;
     vx_u32 bit = vx_bm_voxel_bit(g, s.w.cx, s.w.cy, s.w.cz);
@@ -148,13 +152,11 @@ VX_FN vx_bm_state vx_bm_step(VX_BLOB blob, vx_brickmap g, vx_bm_state s) {
     if (vx_any(in_brick)) word = vx_gather(blob, vx_sel(in_brick, brick + (bit >> 5u), 0u));
     vx_mask solid = at_voxel && (!in_brick || ((word >> (bit & 31u)) & 1u) != 0u);
     s.w.status = vx_sel(solid, VX_STATUS_HIT, s.w.status);
-    /* Guards on vx_any keep SIMD lanes from paying for work no lane needs. */
-    if (vx_any(enter)) s = vx_bm_descend(s, g, value, enter);
 
-    vx_mask go = live && !solid && !enter;
-    s.w = vx_dda_move_sized(s.w, go, vx_sel(at_top, edge, 1));
+    vx_mask go = live && !solid;
+    s.w = vx_dda_move_sized(s.w, go, vx_sel(at_voxel, 1, edge));
     vx_mask moving_on = go && s.w.status == VX_STATUS_ACTIVE;
-    vx_mask leaves_map = moving_on && at_top &&
+    vx_mask leaves_map = moving_on && !at_voxel &&
                          (s.w.cx < 0 || s.w.cy < 0 || s.w.cz < 0 || (s.w.cx >> g.brick_bits) >= g.cells_x ||
                           (s.w.cy >> g.brick_bits) >= g.cells_y || (s.w.cz >> g.brick_bits) >= g.cells_z);
     s.w.status = vx_sel(leaves_map, VX_STATUS_MISS, s.w.status);
