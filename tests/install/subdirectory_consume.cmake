@@ -1,0 +1,12 @@
+# cmake -DSOURCE_DIR=... -DWORK_DIR=... -DCONSUMER_DIR=... -P subdirectory_consume.cmake
+file(REMOVE_RECURSE ${WORK_DIR})
+function(run)
+    execute_process(COMMAND ${ARGN} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+    if(NOT rc EQUAL 0)
+        message(FATAL_ERROR "failed (${rc}): ${ARGN}\n${out}\n${err}")
+    endif()
+endfunction()
+run(${CMAKE_COMMAND} -S ${CONSUMER_DIR} -B ${WORK_DIR} -DCMAKE_BUILD_TYPE=Release -DVOXRAY_SOURCE_DIR=${SOURCE_DIR})
+run(${CMAKE_COMMAND} --build ${WORK_DIR} -j2 --target consumer)
+run(${WORK_DIR}/consumer)
+message(STATUS "voxray as a subdirectory was built against and run")
