@@ -29,7 +29,8 @@ void print_mismatch(std::size_t index, const ray& r, const hit& expected, const 
 }  // namespace
 
 // Applies the edits to every editable structure through its editing API and to the model
-// (the reference), then brings every tracer up to date; returns the ranges sent.
+// (the reference), then brings every tracer up to date. Non-editable structures
+// are rebuilt from the edited model by after_edits().
 void apply_edits(const std::vector<region_edit>& edits, voxel_model& model, std::vector<built>& structures,
                  std::vector<std::unique_ptr<traceable>>& tracers) {
     box3i world = model.bounds();
