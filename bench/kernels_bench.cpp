@@ -6,7 +6,7 @@
 #include "voxray/check/ray_sets.hpp"
 #include "voxray/cpu.hpp"
 #include "voxray/brickmap/brickmap.hpp"
-#include "voxray/structures/dense_grid.hpp"
+#include "voxray/dense_grid/dense_grid.hpp"
 
 namespace {
 

@@ -4,7 +4,7 @@
 #include <cstdio>
 
 #include "voxray/cpu.hpp"
-#include "voxray/structures/dense_grid.hpp"
+#include "voxray/dense_grid/dense_grid.hpp"
 
 int main() {
     voxray::voxel_model model;

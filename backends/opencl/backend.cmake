@@ -1,36 +1,75 @@
 # voxray::opencl — the portable kernels as OpenCL C 1.2, built at run time from source
-# embedded in a generated header (PoCL cannot ingest SPIR-V, so source is the portable
+# embedded in generated headers (PoCL cannot ingest SPIR-V, so source is the portable
 # choice). Users need only an OpenCL ICD and a driver; no kernel compiler at build time.
+# Each structure is its own program (voxray_add_structure calls voxray_opencl_add_program),
+# so a kernel that fails to build on a device breaks that structure only.
 find_package(OpenCL 1.2 QUIET)
-if(OpenCL_FOUND)
-    add_library(voxray_opencl INTERFACE)
-    add_library(voxray::opencl ALIAS voxray_opencl)
-    set_target_properties(voxray_opencl PROPERTIES EXPORT_NAME opencl)
-
-    # The kernel files flattened into one OpenCL program, as a C++ string constant.
-    set(voxray_opencl_generated ${PROJECT_BINARY_DIR}/generated/voxray/generated/opencl_kernels.hpp)
-    voxray_flatten(OUTPUT ${voxray_opencl_generated}
-        CPP_STRING voxray_opencl_kernel_source
-        PREAMBLE ${CMAKE_CURRENT_LIST_DIR}/kernels/preamble.cl
-        EPILOGUE ${CMAKE_CURRENT_LIST_DIR}/kernels/entry.cl)
-    # ALL: the header must exist before `cmake --install`, even if no test was built.
-    add_custom_target(voxray_opencl_kernels ALL DEPENDS ${voxray_opencl_generated})
-    # Interface libraries pass their dependencies on to whoever links them.
-    add_dependencies(voxray_opencl voxray_opencl_kernels)
-
-    target_include_directories(voxray_opencl INTERFACE
-        $<BUILD_INTERFACE:${CMAKE_CURRENT_LIST_DIR}/include>
-        $<BUILD_INTERFACE:${PROJECT_BINARY_DIR}/generated>
-        $<INSTALL_INTERFACE:${CMAKE_INSTALL_INCLUDEDIR}>)
-    target_link_libraries(voxray_opencl INTERFACE voxray::voxray OpenCL::OpenCL)
-    # The host code uses the 1.2 API only (clCreateCommandQueue, no SVM): say so, which
-    # also silences the headers' "defaulting to 3.0" message and 2.0 deprecations.
-    target_compile_definitions(voxray_opencl INTERFACE CL_TARGET_OPENCL_VERSION=120)
-
-    install(DIRECTORY ${CMAKE_CURRENT_LIST_DIR}/include/ DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
-    install(FILES ${voxray_opencl_generated} DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/voxray/generated)
-    voxray_backend_added(opencl voxray_opencl)
-else()
+if(NOT OpenCL_FOUND)
     voxray_backend_missing(opencl
         "find_package(OpenCL 1.2) failed (Debian: ocl-icd-opencl-dev opencl-headers, plus a driver such as pocl-opencl-icd)")
+    return()
 endif()
+
+add_library(voxray_opencl INTERFACE)
+add_library(voxray::opencl ALIAS voxray_opencl)
+set_target_properties(voxray_opencl PROPERTIES EXPORT_NAME opencl)
+target_include_directories(voxray_opencl INTERFACE
+    $<BUILD_INTERFACE:${CMAKE_CURRENT_LIST_DIR}/include>
+    $<BUILD_INTERFACE:${PROJECT_BINARY_DIR}/generated>
+    $<INSTALL_INTERFACE:${CMAKE_INSTALL_INCLUDEDIR}>)
+target_link_libraries(voxray_opencl INTERFACE voxray::voxray OpenCL::OpenCL)
+# The host code uses the 1.2 API only (clCreateCommandQueue, no SVM): say so, which
+# also silences the headers' "defaulting to 3.0" message and 2.0 deprecations.
+target_compile_definitions(voxray_opencl INTERFACE CL_TARGET_OPENCL_VERSION=120)
+install(DIRECTORY ${CMAKE_CURRENT_LIST_DIR}/include/ DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
+set_property(GLOBAL PROPERTY VOXRAY_OPENCL_HEADERS "")
+
+# One embedded program: the flattened source `cl` as voxray/generated/opencl_<name>.hpp.
+function(voxray_opencl_embed name cl)
+    set(header ${VOXRAY_GENERATED}/voxray/generated/opencl_${name}.hpp)
+    voxray_flatten(OUTPUT ${header} CPP_STRING voxray_opencl_${name} FILES ${cl})
+    set_property(GLOBAL APPEND PROPERTY VOXRAY_OPENCL_HEADERS ${header})
+endfunction()
+
+function(voxray_opencl_add_program name cl)
+    voxray_opencl_embed(${name} ${cl})
+endfunction()
+
+# The commit program (incremental updates) and the table of every program by name.
+function(voxray_opencl_finish)
+    set(dir ${CMAKE_CURRENT_FUNCTION_LIST_DIR}/kernels)
+    set(commit_cl ${VOXRAY_GENERATED}/opencl/commit.cl)
+    voxray_flatten(OUTPUT ${commit_cl} LINE_MARKERS FILES ${dir}/preamble.cl
+        ${PROJECT_SOURCE_DIR}/include/voxray/kernels/prelude.h ${PROJECT_SOURCE_DIR}/include/voxray/sync/commit.h
+        ${dir}/commit.cl)
+    voxray_opencl_embed(commit ${commit_cl})
+    set(includes "")
+    set(rows "")
+    foreach(name ${ARGN})
+        string(APPEND includes "#include \"voxray/generated/opencl_${name}.hpp\"\n")
+        string(APPEND rows "    {\"${name}\", voxray_opencl_${name}},\n")
+    endforeach()
+    file(CONFIGURE OUTPUT ${VOXRAY_GENERATED}/voxray/generated/opencl_programs.hpp CONTENT
+"// Generated from the voxray_add_structure calls (backends/opencl/backend.cmake): do not edit.
+#pragma once
+#include \"voxray/generated/opencl_commit.hpp\"
+@includes@#include \"voxray/opencl/program_source.hpp\"
+
+namespace voxray::opencl_detail {
+
+inline constexpr program_source registered_programs[] = {
+@rows@};
+inline constexpr program_source commit_program{\"commit\", voxray_opencl_commit};
+
+}  // namespace voxray::opencl_detail
+" @ONLY)
+    get_property(headers GLOBAL PROPERTY VOXRAY_OPENCL_HEADERS)
+    # ALL: the headers must exist before `cmake --install`, even if no test was built.
+    add_custom_target(voxray_opencl_programs ALL DEPENDS ${headers})
+    # Interface libraries pass their dependencies on to whoever links them.
+    add_dependencies(voxray_opencl voxray_opencl_programs)
+    install(FILES ${headers} ${VOXRAY_GENERATED}/voxray/generated/opencl_programs.hpp
+            DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/voxray/generated)
+endfunction()
+
+voxray_backend_added(opencl voxray_opencl)

@@ -8,6 +8,7 @@
 #include <fstream>
 
 #include "args.hpp"
+#include "edits.hpp"
 #include "commands.hpp"
 #include "engines.hpp"
 #include "scene.hpp"
@@ -35,7 +36,6 @@ std::vector<ray> make_rays(const std::string& kind, const voxel_model& model, tr
 // batch), then brings the backend up to date with only the changed words.
 int run_edit_bench(const args& a, const voxel_model& model, const std::string& structure_name,
                    const std::string& backend) {
-    if (structure_name != "brickmap") fail("--edits needs an editable structure: --structure brickmap");
     std::string kind = a.get("edits", "");
     if (kind != "spheres" && kind != "voxel") fail("--edits must be 'spheres' or 'voxel', not '", kind, "'");
     unsigned threads = unsigned(a.number("threads", 2, 1, 256));
@@ -43,9 +43,9 @@ int run_edit_bench(const args& a, const voxel_model& model, const std::string& s
     constexpr int balls = 50, radius = 25;
 
     auto structure = build_structure(structure_name, model);
-    auto& map = *std::static_pointer_cast<brickmap8>(structure.object);
-    auto engine = make_traceable(structure, backend);
-    box3i world = map.bounds();
+    if (!structure->editable()) fail("--edits needs an editable structure, not ", structure_name);
+    auto engine = structure->trace_on(backend);
+    box3i world = model.bounds();
     rng g(11);
     std::vector<glm::vec3> position(balls), velocity(balls);
     glm::vec3 lo = glm::vec3(world.min), hi = glm::vec3(world.max);
@@ -68,7 +68,7 @@ int run_edit_bench(const args& a, const voxel_model& model, const std::string& s
         if (kind == "voxel") {  // the smallest edit: one voxel somewhere in the world
             glm::ivec3 e = world.extent();
             edits.push_back({regions::box{box3i{world.min + glm::ivec3(g.below(e.x), g.below(e.y), g.below(e.z)), {}}},
-                             edit_op::fill, std::uint8_t(1 + g.below(255))});
+                             edit_op::fill, std::uint32_t(1 + g.below(255))});
             auto& b = std::get<regions::box>(edits.back().region).b;
             b.max = b.min + 1;
         }
@@ -79,19 +79,18 @@ int run_edit_bench(const args& a, const voxel_model& model, const std::string& s
                 if (position[i][k] < lo[k] || position[i][k] >= hi[k]) velocity[i][k] = -velocity[i][k];
                 position[i][k] = std::clamp(position[i][k], lo[k], hi[k] - 1.0f);
             }
-            edits.push_back({sphere_at(i), edit_op::fill, std::uint8_t(1 + i * 5)});
+            edits.push_back({sphere_at(i), edit_op::fill, std::uint32_t(1 + i * 5)});
         }
         for (auto& e : edits) writes += f == 0 ? 0 : std::visit([&](const auto& r) { return region_voxels(r, world); }, e.region);
         if (f == 0) {
-            map.apply_batch(edits, threads);
-            engine->after_edits(model, map.take_dirty_ranges());
+            structure->apply_edits(edits, threads);
+            engine->after_edits(model);
             continue;
         }
         auto start = std::chrono::steady_clock::now();
-        map.apply_batch(edits, threads);
+        structure->apply_edits(edits, threads);  // edits, then takes the dirty ranges
         auto edited = std::chrono::steady_clock::now();
-        auto ranges = map.take_dirty_ranges();
-        engine->after_edits(model, ranges);
+        engine->after_edits(model);
         auto synced = std::chrono::steady_clock::now();
         edit_seconds += std::chrono::duration<double>(edited - start).count();
         update_seconds += std::chrono::duration<double>(synced - edited).count();
@@ -100,18 +99,18 @@ int run_edit_bench(const args& a, const voxel_model& model, const std::string& s
     std::fprintf(stderr, "\n");
     double per_second = double(writes) / edit_seconds;
     double per_update = double(uploaded) / frames;
-    std::printf("scene %s  structure brickmap  backend %s (%s)  %d frames of %s, %u threads\n",
-                a.positional()[0].c_str(), backend.c_str(), engine->device().c_str(), frames,
+    std::printf("scene %s  structure %s  backend %s (%s)  %d frames of %s, %u threads\n",
+                a.positional()[0].c_str(), structure_name.c_str(), backend.c_str(), engine->device().c_str(), frames,
                 kind == "voxel" ? "one voxel edit" : "100 sphere edits (50 balls, r 25)", threads);
     std::printf("world %d x %d x %d, blob %zu bytes; %.2f ms edits and %.2f ms update per frame\n",
-                world.extent().x, world.extent().y, world.extent().z, map.bytes(), 1e3 * edit_seconds / frames,
+                world.extent().x, world.extent().y, world.extent().z, structure->bytes(), 1e3 * edit_seconds / frames,
                 1e3 * update_seconds / frames);
     if (a.has("json")) {
         std::ofstream j(a.get("json", ""));
-        j << "{\"scene\": \"" << a.positional()[0] << "\", \"structure\": \"brickmap\", \"backend\": \"" << backend
+        j << "{\"scene\": \"" << a.positional()[0] << "\", \"structure\": \"" << structure_name << "\", \"backend\": \"" << backend
           << "\", \"edits\": \"" << kind << "\", \"threads\": " << threads << ", \"frames\": " << frames
           << ", \"voxel_writes\": " << writes << ", \"writes_per_second\": " << per_second
-          << ", \"bytes_uploaded_per_update\": " << per_update << ", \"blob_bytes\": " << map.bytes()
+          << ", \"bytes_uploaded_per_update\": " << per_update << ", \"blob_bytes\": " << structure->bytes()
           << ", \"update_ms\": " << 1e3 * update_seconds / frames << "}\n";
         if (!j) fail("cannot write ", a.get("json", ""));
     }
@@ -136,9 +135,9 @@ int run_bench(int argc, char** argv) {
 
     std::fprintf(stderr, "building %s ...\n", structure_name.c_str());
     auto structure = build_structure(structure_name, model);
-    auto engine = make_traceable(structure, backend);
+    auto engine = structure->trace_on(backend);
     auto reference_grid = structure_name == "dense" ? structure : build_structure("dense", model);
-    auto reference = make_traceable(reference_grid, "cpu");
+    auto reference = reference_grid->trace_on("cpu");
 
     auto rays = make_rays(kind, model, *reference, width, height);
     bool shadow = kind == "shadow";
@@ -178,8 +177,8 @@ int run_bench(int argc, char** argv) {
 
     std::printf("scene %s  structure %s  backend %s (%s)  rays %s %dx%d  runs %d\n", scene.c_str(),
                 structure_name.c_str(), backend.c_str(), engine->device().c_str(), kind.c_str(), width, height, runs);
-    std::printf("bytes %zu (%.2f per voxel)  build %.3f s  steps/ray %.2f\n", structure.bytes,
-                double(structure.bytes) / double(std::max<std::uint64_t>(1, model.voxel_count())), structure.build_seconds,
+    std::printf("bytes %zu (%.2f per voxel)  build %.3f s  steps/ray %.2f\n", structure->bytes(),
+                double(structure->bytes()) / double(std::max<std::uint64_t>(1, model.voxel_count())), structure->build_seconds(),
                 steps);
     std::printf("validated %zu rays x %d runs against dense/cpu: %llu mismatches, %llu ties\n", rays.size(), runs,
                 (unsigned long long)mismatches, (unsigned long long)ties);
@@ -188,8 +187,8 @@ int run_bench(int argc, char** argv) {
         j << "{\"scene\": \"" << scene << "\", \"structure\": \"" << structure_name << "\", \"backend\": \"" << backend
           << "\", \"device\": \"" << engine->device() << "\", \"rays\": \"" << kind << "\", \"width\": " << width
           << ", \"height\": " << height << ", \"runs\": " << runs << ", \"ray_count\": " << rays.size()
-          << ", \"voxels\": " << model.voxel_count() << ", \"bytes\": " << structure.bytes
-          << ", \"build_seconds\": " << structure.build_seconds << ", \"steps_per_ray\": " << steps
+          << ", \"voxels\": " << model.voxel_count() << ", \"bytes\": " << structure->bytes()
+          << ", \"build_seconds\": " << structure->build_seconds() << ", \"steps_per_ray\": " << steps
           << ", \"mrays_median\": " << median << ", \"mrays_min\": " << lo << ", \"mrays_max\": " << hi
           << ", \"mrays_runs\": [";
         for (std::size_t i = 0; i < mrays.size(); ++i) j << (i ? ", " : "") << mrays[i];

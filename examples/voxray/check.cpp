@@ -3,6 +3,7 @@
 #include <cstdio>
 
 #include "args.hpp"
+#include "edits.hpp"
 #include "commands.hpp"
 #include "engines.hpp"
 #include "scene.hpp"
@@ -29,23 +30,18 @@ void print_mismatch(std::size_t index, const ray& r, const hit& expected, const 
 }  // namespace
 
 // Applies the edits to every editable structure through its editing API and to the model
-// (the reference), then brings every tracer up to date. Non-editable structures
-// are rebuilt from the edited model by after_edits().
-void apply_edits(const std::vector<region_edit>& edits, voxel_model& model, std::vector<built>& structures,
+// (the reference), then brings every tracer up to date: each editable structure sends its
+// own dirty ranges; the others are rebuilt from the edited model by after_edits().
+void apply_edits(const std::vector<region_edit>& edits, voxel_model& model, std::vector<std::shared_ptr<slot>>& structures,
                  std::vector<std::unique_ptr<traceable>>& tracers) {
     box3i world = model.bounds();
-    std::vector<word_range> ranges;
-    for (auto& s : structures) {
-        if (!s.editable) continue;
-        auto& map = *std::static_pointer_cast<brickmap8>(s.object);
-        for (auto& e : edits) std::visit([&](const auto& region) { map.apply(region, e.op, e.value); }, e.region);
-        ranges = map.take_dirty_ranges();  // one editable structure today: the brickmap
-    }
+    for (auto& s : structures)
+        if (s->editable()) s->apply_edits(edits);
     std::uint64_t writes = 0;
     for (auto& e : edits) writes += apply_to_model(model, e, world);
     std::fprintf(stderr, "applied %zu edits (%llu voxel writes); updating every backend ...\n", edits.size(),
                  (unsigned long long)writes);
-    for (auto& t : tracers) t->after_edits(model, ranges);
+    for (auto& t : tracers) t->after_edits(model);
 }
 
 int run_check(int argc, char** argv) {
@@ -55,24 +51,24 @@ int run_check(int argc, char** argv) {
     auto seed = std::uint64_t(a.number("seed", 1, 0, 1ll << 62));
     int edit_count = int(a.number("edits", 0, 0, 100000));
     auto structure_names = a.list("structures", "dense,brickmap,embree-boxes");
-    auto backends = a.list("backends", "cpu,cpu-scalar,opencl,vulkan");
+    auto backend_names = a.list("backends", "cpu,cpu-scalar,opencl,vulkan");
     auto model = load_scene(a.positional()[0], int(a.number("resolution", 512, 1, 4096)));
     box3i world = model.bounds();
 
     // Every pair is set up before any edit, so that edits reach it through update().
-    std::vector<built> structures;
+    std::vector<std::shared_ptr<slot>> structures;
     std::vector<std::unique_ptr<traceable>> tracers;
     std::vector<std::pair<std::string, std::string>> labels;
     std::printf("%-14s %-11s %12s %10s\n", "structure", "backend", "mismatches", "ties");
     for (auto& s : structure_names) {
         std::fprintf(stderr, "building %s ...\n", s.c_str());
         structures.push_back(build_structure(s, model));
-        for (auto& b : backends) {
-            if (!pair_exists(s, b)) {
+        for (auto& b : backend_names) {
+            if (!structures.back()->runs_on(b)) {
                 std::printf("%-14s %-11s %s\n", s.c_str(), b.c_str(), "(pair does not exist: not counted)");
                 continue;
             }
-            tracers.push_back(make_traceable(structures.back(), b));
+            tracers.push_back(structures.back()->trace_on(b));
             labels.emplace_back(s, b);
         }
     }
@@ -81,7 +77,7 @@ int run_check(int argc, char** argv) {
     auto rays = check_rays(world, model.up_axis, count, seed);
     std::fprintf(stderr, "tracing %zu rays on the reference (dense, cpu-scalar) ...\n", rays.size());
     std::vector<hit> reference(rays.size()), hits(rays.size());
-    make_traceable(build_structure("dense", model), "cpu-scalar")->closest_hit(rays, reference);
+    build_structure("dense", model)->trace_on("cpu-scalar")->closest_hit(rays, reference);
 
     std::uint64_t mismatches = 0, ties = 0;
     for (std::size_t p = 0; p < tracers.size(); ++p) {

@@ -6,14 +6,11 @@
 #include <variant>
 #include <vector>
 
-#include "voxray/brickmap/brickmap.hpp"
 #include "voxray/check/ray_sets.hpp"
+#include "voxray/edit/region_edit.hpp"
 #include "voxray/model/voxel_model.hpp"
 
 namespace voxray::tool {
-
-using brickmap8 = brickmap<std::uint8_t, 8>;
-using region_edit = brickmap8::edit;
 
 // Spheres, boxes and lines (capsules), each to fill, erase or paint, inside `world`.
 inline std::vector<region_edit> random_edits(const box3i& world, int count, std::uint64_t seed) {
@@ -27,7 +24,7 @@ inline std::vector<region_edit> random_edits(const box3i& world, int count, std:
     for (int i = 0; i < count; ++i) {
         region_edit e;
         e.op = static_cast<edit_op>(g.below(3));
-        e.value = std::uint8_t(1 + g.below(255));
+        e.value = std::uint32_t(1 + g.below(255));
         glm::ivec3 a = point();
         switch (g.below(3)) {
         case 0: e.region = regions::sphere{a, 1 + g.below(reach)}; break;
@@ -57,9 +54,9 @@ inline std::uint64_t apply_to_model(voxel_model& model, const region_edit& e, co
                         glm::ivec3 p(x, y, z);
                         if (!region.contains(p)) continue;
                         ++writes;
-                        if (e.op == edit_op::fill) model.set(p, e.value);
+                        if (e.op == edit_op::fill) model.set(p, std::uint8_t(e.value));
                         else if (e.op == edit_op::erase) model.set(p, 0);
-                        else if (model.get(p)) model.set(p, e.value);
+                        else if (model.get(p)) model.set(p, std::uint8_t(e.value));
                     }
         },
         e.region);

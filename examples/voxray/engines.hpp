@@ -1,15 +1,19 @@
 // Run-time choice of structure x backend for the tool. The library's tracer is a
-// compile-time policy; the tool, which takes names on the command line, wraps each
-// combination once behind this small virtual interface (outside the hot loop).
+// compile-time policy; the tool, which takes names on the command line, walks the type
+// list of registered structures (voxray/generated/structures.hpp) and of backends once,
+// wrapping each combination behind this small virtual interface (outside the hot loop).
+// Baselines (Embree) are not tracer structures; they come from their own list.
 #pragma once
 #include <memory>
 #include <span>
 #include <string>
 #include <vector>
 
-#include "edits.hpp"
+#include "voxray/core/type_list.hpp"
 #include "voxray/cpu.hpp"
-#include "voxray/structures/dense_grid.hpp"
+#include "voxray/edit/region_edit.hpp"
+#include "voxray/generated/structures.hpp"
+#include "voxray/tracer.hpp"
 #if VOXRAY_WITH_OPENCL
 #include "voxray/opencl.hpp"
 #endif
@@ -23,16 +27,20 @@
 
 namespace voxray::tool {
 
-inline bool is_embree(const std::string& structure) { return structure.rfind("embree-", 0) == 0; }
+using backends = type_list<cpu, cpu_scalar
+#if VOXRAY_WITH_OPENCL
+                           , opencl
+#endif
+#if VOXRAY_WITH_VULKAN
+                           , vulkan
+#endif
+                           >;
 
-// A built structure with its size and build time, shared by every backend that traces it.
-struct built {
-    std::string name;
-    std::size_t bytes = 0;
-    double build_seconds = 0;
-    std::shared_ptr<void> object;
-    bool editable = false;  // has an editing API (else rebuilt from the edited model)
-};
+#if VOXRAY_WITH_EMBREE
+using baselines = type_list<embree::quad_scene, embree::box_scene>;
+#else
+using baselines = type_list<>;
+#endif
 
 class traceable {
 public:
@@ -41,41 +49,97 @@ public:
     virtual void any_hit(std::span<const ray> rays, std::span<hit> hits) = 0;
     virtual std::string device() const { return "cpu"; }
     // Brings the backend up to date after edits: an editable structure was edited in place
-    // and sends `ranges`; the others are rebuilt from the edited model and sent whole.
-    virtual void after_edits(const voxel_model& edited, std::span<const word_range> ranges) = 0;
+    // (its slot holds the dirty ranges of the last edits); the others are rebuilt from the
+    // edited model and sent whole.
+    virtual void after_edits(const voxel_model& edited) = 0;
     virtual std::uint64_t bytes_uploaded_last_update() const { return 0; }
 };
 
-// Builds structure T from the model and records its size and build time.
-template <class T>
-built make_built(const std::string& name, const voxel_model& model, bool editable = false) {
-    auto s = std::make_shared<T>(model);
-    return built{name, s->bytes(), s->build_seconds(), s, editable};
-}
+// One built structure or baseline, shared by every backend that traces it.
+class slot {
+public:
+    virtual ~slot() = default;
+    virtual std::string name() const = 0;
+    virtual std::size_t bytes() const = 0;
+    virtual double build_seconds() const = 0;
+    virtual bool editable() const { return false; }
+    virtual bool runs_on(const std::string& backend) const = 0;
+    virtual std::unique_ptr<traceable> trace_on(const std::string& backend) = 0;
+    // Edits the structure in place (editable ones only) and keeps the dirty ranges for
+    // its traceables' after_edits().
+    virtual void apply_edits(std::span<const region_edit>, unsigned threads = 1) {
+        fail("structure ", name(), " is not editable");
+    }
+};
 
-inline built build_structure(const std::string& name, const voxel_model& model) {
-    if (name == "dense") return make_built<dense_grid>(name, model);
-    if (name == "brickmap") return make_built<brickmap8>(name, model, true);
-#if VOXRAY_WITH_EMBREE
-    if (name == "embree-quads") return make_built<embree::quad_scene>(name, model);
-    if (name == "embree-boxes") return make_built<embree::box_scene>(name, model);
-#endif
-    fail("unknown or unavailable structure '", name, "' (known: dense, brickmap, embree-quads, embree-boxes)");
-}
+template <class Backend, class Structure>
+class policy_traceable;
+
+template <class Structure>
+class structure_slot final : public slot, public std::enable_shared_from_this<structure_slot<Structure>> {
+public:
+    explicit structure_slot(const voxel_model& model) : structure(std::make_shared<Structure>(model)) {}
+    std::string name() const override { return std::string(Structure::name); }
+    std::size_t bytes() const override { return structure->bytes(); }
+    double build_seconds() const override { return structure->build_seconds(); }
+    bool editable() const override { return editable_structure<Structure>; }
+    bool runs_on(const std::string& backend) const override {
+        bool found = false;
+        for_each_type(backends{}, [&]<class B>() { found |= backend == B::name; });
+        return found;
+    }
+    std::unique_ptr<traceable> trace_on(const std::string& backend) override {
+        std::unique_ptr<traceable> t;
+        for_each_type(backends{}, [&]<class B>() {
+            if (!t && backend == B::name) t = std::make_unique<policy_traceable<B, Structure>>(this->shared_from_this());
+        });
+        if (!t) fail("unknown or unavailable backend '", backend, "' (known: ", names_of(backends{}), ")");
+        return t;
+    }
+    void apply_edits(std::span<const region_edit> edits, unsigned threads) override {
+        if constexpr (editable_structure<Structure>) {
+            using payload = typename Structure::payload_type;
+            if constexpr (requires { structure->apply_batch(std::span<const typename Structure::edit>{}, threads); }) {
+                std::vector<typename Structure::edit> typed;
+                typed.reserve(edits.size());
+                for (auto& e : edits) typed.push_back({e.region, e.op, payload(e.value)});
+                structure->apply_batch(typed, threads);
+            } else {
+                for (auto& e : edits)
+                    std::visit([&](const auto& r) { structure->apply(r, e.op, payload(e.value), threads); }, e.region);
+            }
+            auto taken = structure->take_dirty_ranges();
+            ranges.assign(taken.begin(), taken.end());
+        } else {
+            slot::apply_edits(edits, threads);
+        }
+    }
+
+    template <class List>
+    static std::string names_of(List) {
+        std::string out;
+        for_each_type(List{}, [&]<class B>() { out += (out.empty() ? "" : ", ") + std::string(B::name); });
+        return out;
+    }
+
+    std::shared_ptr<Structure> structure;
+    std::vector<word_range> ranges;  // dirty ranges of the last apply_edits
+};
 
 template <class Backend, class Structure>
 class policy_traceable final : public traceable {
 public:
-    explicit policy_traceable(std::shared_ptr<Structure> s) : structure_(std::move(s)), tracer_(*structure_) {}
+    explicit policy_traceable(std::shared_ptr<structure_slot<Structure>> s)
+        : slot_(std::move(s)), structure_(slot_->structure), tracer_(*structure_) {}
     void closest_hit(std::span<const ray> rays, std::span<hit> hits) override { tracer_.closest_hit(rays, hits); }
     void any_hit(std::span<const ray> rays, std::span<hit> hits) override { tracer_.any_hit(rays, hits); }
     std::string device() const override {
         if constexpr (requires { tracer_.engine().device_name(); }) return tracer_.engine().device_name();
         else return "cpu";
     }
-    void after_edits(const voxel_model& edited, std::span<const word_range> ranges) override {
-        if constexpr (std::is_same_v<Structure, brickmap8>) {
-            tracer_.update(*structure_, ranges);
+    void after_edits(const voxel_model& edited) override {
+        if constexpr (editable_structure<Structure>) {
+            tracer_.update(*structure_, std::span<const word_range>(slot_->ranges));
         } else {
             structure_ = std::make_shared<Structure>(edited);
             tracer_.update(*structure_);
@@ -84,53 +148,62 @@ public:
     std::uint64_t bytes_uploaded_last_update() const override { return tracer_.bytes_uploaded_last_update(); }
 
 private:
+    std::shared_ptr<structure_slot<Structure>> slot_;
     std::shared_ptr<Structure> structure_;
     mutable tracer<Backend, Structure> tracer_;
 };
 
+// Embree scenes trace on the CPU only; edits rebuild them.
 template <class Scene>
-class embree_traceable final : public traceable {
+class baseline_traceable final : public traceable {
 public:
-    explicit embree_traceable(std::shared_ptr<Scene> scene) : scene_(std::move(scene)) {}
+    explicit baseline_traceable(std::shared_ptr<Scene> scene) : scene_(std::move(scene)) {}
     void closest_hit(std::span<const ray> rays, std::span<hit> hits) override { scene_->closest_hit(rays, hits); }
     void any_hit(std::span<const ray> rays, std::span<hit> hits) override { scene_->any_hit(rays, hits); }
-    std::string device() const override { return "cpu (embree)"; }
-    void after_edits(const voxel_model& edited, std::span<const word_range>) override {
-        scene_ = std::make_shared<Scene>(edited);
+    std::string device() const override { return "cpu (" + std::string(Scene::library) + ")"; }
+    void after_edits(const voxel_model& edited) override { scene_ = std::make_shared<Scene>(edited); }
+
+private:
+    std::shared_ptr<Scene> scene_;
+};
+
+template <class Scene>
+class baseline_slot final : public slot {
+public:
+    explicit baseline_slot(const voxel_model& model) : scene_(std::make_shared<Scene>(model)) {}
+    std::string name() const override { return std::string(Scene::name); }
+    std::size_t bytes() const override { return scene_->bytes(); }
+    double build_seconds() const override { return scene_->build_seconds(); }
+    bool runs_on(const std::string& backend) const override { return backend == "cpu"; }
+    std::unique_ptr<traceable> trace_on(const std::string& backend) override {
+        if (!runs_on(backend)) fail("structure ", name(), " runs on the cpu backend only, not ", backend);
+        return std::make_unique<baseline_traceable<Scene>>(scene_);
     }
 
 private:
     std::shared_ptr<Scene> scene_;
 };
 
-// Whether the pair exists at all (Embree structures run on the CPU only).
-inline bool pair_exists(const std::string& structure, const std::string& backend) {
-    return !is_embree(structure) || backend == "cpu";
+// Every structure and baseline name the tool knows.
+inline std::string structure_names(const char* separator = ", ") {
+    std::string out;
+    auto add = [&]<class S>() { out += (out.empty() ? "" : separator) + std::string(S::name); };
+    for_each_type(registered::structures{}, add);
+    for_each_type(baselines{}, add);
+    return out;
 }
 
-template <class Structure>
-std::unique_ptr<traceable> make_policy_traceable(std::shared_ptr<Structure> s, const std::string& backend) {
-    if (backend == "cpu") return std::make_unique<policy_traceable<cpu, Structure>>(s);
-    if (backend == "cpu-scalar") return std::make_unique<policy_traceable<cpu_scalar, Structure>>(s);
-#if VOXRAY_WITH_OPENCL
-    if (backend == "opencl") return std::make_unique<policy_traceable<opencl, Structure>>(s);
-#endif
-#if VOXRAY_WITH_VULKAN
-    if (backend == "vulkan") return std::make_unique<policy_traceable<vulkan, Structure>>(s);
-#endif
-    fail("unknown or unavailable backend '", backend, "' (known: cpu, cpu-scalar, opencl, vulkan)");
-}
-
-inline std::unique_ptr<traceable> make_traceable(const built& s, const std::string& backend) {
-    if (!pair_exists(s.name, backend)) fail("structure ", s.name, " runs on the cpu backend only, not ", backend);
-#if VOXRAY_WITH_EMBREE
-    if (s.name == "embree-quads")
-        return std::make_unique<embree_traceable<embree::quad_scene>>(std::static_pointer_cast<embree::quad_scene>(s.object));
-    if (s.name == "embree-boxes")
-        return std::make_unique<embree_traceable<embree::box_scene>>(std::static_pointer_cast<embree::box_scene>(s.object));
-#endif
-    if (s.name == "brickmap") return make_policy_traceable(std::static_pointer_cast<brickmap8>(s.object), backend);
-    return make_policy_traceable(std::static_pointer_cast<dense_grid>(s.object), backend);
+// Builds structure or baseline `name` from the model.
+inline std::shared_ptr<slot> build_structure(const std::string& name, const voxel_model& model) {
+    std::shared_ptr<slot> s;
+    for_each_type(registered::structures{}, [&]<class S>() {
+        if (!s && name == S::name) s = std::make_shared<structure_slot<S>>(model);
+    });
+    for_each_type(baselines{}, [&]<class S>() {
+        if (!s && name == S::name) s = std::make_shared<baseline_slot<S>>(model);
+    });
+    if (!s) fail("unknown or unavailable structure '", name, "' (known: ", structure_names(), ")");
+    return s;
 }
 
 }  // namespace voxray::tool

@@ -18,11 +18,11 @@ int run_info(int argc, char** argv) {
     std::printf("voxels     %llu\n", (unsigned long long)model.voxel_count());
     std::printf("palette    %d colours used\n", model.palette().used_entries());
     std::printf("%-14s %14s %12s %10s\n", "structure", "bytes", "bytes/voxel", "build s");
-    for (auto& name : a.list("structures", "dense,brickmap,embree-quads,embree-boxes")) {
+    for (auto& name : a.list("structures", structure_names(","))) {
         std::fprintf(stderr, "building %s ...\n", name.c_str());
         auto s = build_structure(name, model);
-        double per_voxel = model.voxel_count() ? double(s.bytes) / double(model.voxel_count()) : 0.0;
-        std::printf("%-14s %14zu %12.2f %10.3f\n", name.c_str(), s.bytes, per_voxel, s.build_seconds);
+        double per_voxel = model.voxel_count() ? double(s->bytes()) / double(model.voxel_count()) : 0.0;
+        std::printf("%-14s %14zu %12.2f %10.3f\n", name.c_str(), s->bytes(), per_voxel, s->build_seconds());
     }
     return 0;
 }

@@ -27,9 +27,9 @@ int run_render(int argc, char** argv) {
     int width = int(a.number("width", 1280, 1, 16384)), height = int(a.number("height", 720, 1, 16384));
     auto model = load_scene(a.positional()[0], int(a.number("resolution", 512, 1, 4096)));
     auto structure = build_structure(a.get("structure", "dense"), model);
-    auto engine = make_traceable(structure, a.get("backend", "cpu"));
+    auto engine = structure->trace_on(a.get("backend", "cpu"));
 
-    std::fprintf(stderr, "tracing %d x %d on %s / %s ...\n", width, height, structure.name.c_str(), engine->device().c_str());
+    std::fprintf(stderr, "tracing %d x %d on %s / %s ...\n", width, height, structure->name().c_str(), engine->device().c_str());
     auto cam = auto_camera(model.bounds(), model.up_axis, int(a.number("view", 0, 0, 7)));
     auto rays = primary_rays(cam, width, height);
     std::vector<hit> hits(rays.size()), shadow(rays.size());
@@ -55,7 +55,7 @@ int run_render(int argc, char** argv) {
             rgb[i * 3 + k] = std::uint8_t(std::clamp(std::pow(c[k], 1.0f / 2.2f), 0.0f, 1.0f) * 255.0f + 0.5f);
     }
     write_png(a.get("out", ""), width, height, rgb);
-    std::printf("wrote %s (%d x %d, %s on %s)\n", a.get("out", "").c_str(), width, height, structure.name.c_str(),
+    std::printf("wrote %s (%d x %d, %s on %s)\n", a.get("out", "").c_str(), width, height, structure->name().c_str(),
                 a.get("backend", "cpu").c_str());
     return 0;
 }

@@ -23,13 +23,33 @@
 #include <concepts>
 #include <cstdint>
 #include <span>
+#include <string_view>
 
 #include "voxray/core/error.hpp"
 #include "voxray/core/hit.hpp"
 #include "voxray/core/ray.hpp"
-#include "voxray/structures/word_range.hpp"
+#include "voxray/core/word_range.hpp"
+#include "voxray/edit/edit_op.hpp"
+#include "voxray/edit/regions.hpp"
 
 namespace voxray {
+
+// What tracer<Backend, Structure> needs of a structure: a kernel tag (declared by
+// kernels/cpu_kernel.inc in the structure's header), a name, and its blob of words.
+template <class S>
+concept structure = requires(const S& s) {
+    typename S::kernel;
+    { S::kernel::name } -> std::convertible_to<const char*>;
+    { S::name } -> std::convertible_to<std::string_view>;
+    { s.blob() } -> std::convertible_to<std::span<const std::uint32_t>>;
+};
+
+// What a backend must offer (see the comment at the top).
+template <class B>
+concept backend = requires {
+    typename B::options;
+    { B::name } -> std::convertible_to<const char*>;
+};
 
 // A structure that reports which blob words its edits changed. take_dirty_ranges() is
 // non-const: taking the ranges clears them.
@@ -38,8 +58,23 @@ concept tracks_dirty_ranges = requires(Structure& s) {
     { s.take_dirty_ranges() } -> std::convertible_to<std::span<const word_range>>;
 };
 
+// A structure edited in place through the shared editing vocabulary (edit/regions.hpp,
+// edit/edit_op.hpp), whose tracers then receive only the words that changed.
+template <class S>
+concept editable_structure = structure<S> && tracks_dirty_ranges<S> && requires(S& s, regions::sphere r) {
+    typename S::payload_type;
+    s.apply(r, edit_op::fill, typename S::payload_type{});
+};
+
 template <class Backend, class Structure>
 class tracer {
+    static_assert(backend<Backend>,
+                  "tracer<Backend, Structure>: Backend must be a voxray backend (voxray::cpu, voxray::cpu_scalar, "
+                  "voxray::opencl or voxray::vulkan)");
+    static_assert(structure<Structure>,
+                  "tracer<Backend, Structure>: Structure must be a voxray structure (dense_grid, brickmap<...>): "
+                  "a kernel tag, a name and blob()");
+
 public:
     using backend_type = Backend;
     using structure_type = Structure;

@@ -1,38 +1,121 @@
-# The portable kernel sources, in dependency order, and a build-time step that flattens
-# them (resolving #include "voxray/...") into one translation unit for OpenCL C or GLSL.
-# Add a new structure's layout and kernel files here, and its name to VOXRAY_KERNEL_NAMES.
-set(VOXRAY_KERNEL_SOURCES
-    kernels/prelude.h
-    layout/dense_grid_layout.h
-    kernels/ray.h
-    kernels/dda.h
-    kernels/dense_grid.h
-    layout/brickmap_layout.h
-    kernels/brickmap.h)
-set(VOXRAY_KERNEL_NAMES dense_grid brickmap)
+# Structure registration and the portable kernels' build steps.
+#
+#   voxray_add_structure(<name> [TYPE <C++ type>])
+#
+# registers the structure whose files are include/voxray/<name>/ (kernel.h, layout.h,
+# <name>.hpp; TYPE defaults to voxray::<name>). One call per structure (top-level
+# CMakeLists.txt) does everything a backend needs: it flattens the kernel into its own
+# OpenCL C program and its own GLSL shaders (one per trace mode), compiles those to SPIR-V,
+# checks the OpenCL C with clang where clang exists (a kernel error shows up without a
+# device), and adds the structure to the type list the tool and the conformance tests
+# iterate. voxray_finish_structures() writes the tables that map names to programs.
+# The CPU side needs no CMake: the host header includes kernels/cpu_kernel.inc.
 
-# voxray_flatten(OUTPUT <file> [CPP_STRING <name>] PREAMBLE <file> EPILOGUE <file>)
-# Writes PREAMBLE, the kernel sources and EPILOGUE into OUTPUT at build time; with
-# CPP_STRING, as a C++ header holding the text in a constant of that name.
+# The shared dialect every kernel builds on, in dependency order.
+set(VOXRAY_KERNEL_COMMON kernels/prelude.h kernels/ray.h kernels/dda.h)
+set(VOXRAY_GENERATED ${PROJECT_BINARY_DIR}/generated)
+file(MAKE_DIRECTORY ${VOXRAY_GENERATED}/voxray/generated ${VOXRAY_GENERATED}/opencl ${VOXRAY_GENERATED}/vulkan)
+find_program(VOXRAY_CLANG NAMES clang clang-16 clang-15 clang-14 DOC "clang, to check OpenCL C kernels at build time")
+
+# voxray_flatten(OUTPUT <file> FILES <file>... [CPP_STRING <name>] [LINE_MARKERS])
+# Writes FILES into OUTPUT at build time, resolving #include "voxray/..." once each; with
+# LINE_MARKERS, #line directives so compiler errors name the original file and line;
+# with CPP_STRING, as a C++ header holding the text in a constant of that name.
 function(voxray_flatten)
-    cmake_parse_arguments(arg "" "OUTPUT;PREAMBLE;EPILOGUE;CPP_STRING" "" ${ARGN})
+    cmake_parse_arguments(arg "LINE_MARKERS" "OUTPUT;CPP_STRING" "FILES" ${ARGN})
     if(NOT TARGET voxray_flatten)
         add_executable(voxray_flatten ${PROJECT_SOURCE_DIR}/scripts/kernel_tools/flatten.cpp)
         target_compile_features(voxray_flatten PRIVATE cxx_std_20)
     endif()
-    set(sources "")
-    foreach(s ${VOXRAY_KERNEL_SOURCES})
-        list(APPEND sources ${PROJECT_SOURCE_DIR}/include/voxray/${s})
-    endforeach()
-    file(GLOB kernel_headers ${PROJECT_SOURCE_DIR}/include/voxray/kernels/*.h
-                             ${PROJECT_SOURCE_DIR}/include/voxray/layout/*.h)
-    set(cpp_args "")
+    file(GLOB_RECURSE dialect_headers ${PROJECT_SOURCE_DIR}/include/voxray/*.h)
+    set(options "")
     if(arg_CPP_STRING)
-        set(cpp_args --cpp-string ${arg_CPP_STRING})
+        list(APPEND options --cpp-string ${arg_CPP_STRING})
+    endif()
+    if(arg_LINE_MARKERS)
+        list(APPEND options --line-markers)
     endif()
     add_custom_command(OUTPUT ${arg_OUTPUT}
-        COMMAND voxray_flatten ${PROJECT_SOURCE_DIR}/include ${arg_OUTPUT} ${cpp_args}
-                ${arg_PREAMBLE} ${sources} ${arg_EPILOGUE}
-        DEPENDS voxray_flatten ${kernel_headers} ${arg_PREAMBLE} ${arg_EPILOGUE}
-        COMMENT "Flattening voxray kernels into ${arg_OUTPUT}" VERBATIM)
+        COMMAND voxray_flatten ${PROJECT_SOURCE_DIR}/include ${arg_OUTPUT} ${options} ${arg_FILES}
+        DEPENDS voxray_flatten ${dialect_headers} ${arg_FILES}
+        COMMENT "Flattening ${arg_OUTPUT}" VERBATIM)
+endfunction()
+
+# The absolute paths of the shared dialect followed by `extra` (paths under include/).
+function(voxray_kernel_files out)
+    set(files "")
+    foreach(f ${VOXRAY_KERNEL_COMMON} ${ARGN})
+        list(APPEND files ${PROJECT_SOURCE_DIR}/include/voxray/${f})
+    endforeach()
+    set(${out} ${files} PARENT_SCOPE)
+endfunction()
+
+function(voxray_add_structure name)
+    cmake_parse_arguments(arg "" "TYPE" "" ${ARGN})
+    if(NOT arg_TYPE)
+        set(arg_TYPE "voxray::${name}")
+    endif()
+    set(dir ${PROJECT_SOURCE_DIR}/include/voxray/${name})
+    foreach(f kernel.h layout.h ${name}.hpp)
+        if(NOT EXISTS ${dir}/${f})
+            message(FATAL_ERROR "voxray_add_structure(${name}): ${dir}/${f} is missing")
+        endif()
+    endforeach()
+    set_property(GLOBAL APPEND PROPERTY VOXRAY_STRUCTURES ${name})
+    set_property(GLOBAL APPEND PROPERTY VOXRAY_STRUCTURE_TYPES "${arg_TYPE}")
+    voxray_kernel_files(kernel_files ${name}/kernel.h)
+
+    # OpenCL C: preamble, dialect, kernel, the entry macros and this structure's entry line.
+    set(cl ${VOXRAY_GENERATED}/opencl/${name}.cl)
+    set(entry ${VOXRAY_GENERATED}/opencl/${name}_entry.cl)
+    file(CONFIGURE OUTPUT ${entry} CONTENT "VX_OPENCL_ENTRY(${name})\n")
+    set(cl_dir ${PROJECT_SOURCE_DIR}/backends/opencl/kernels)
+    voxray_flatten(OUTPUT ${cl} LINE_MARKERS FILES ${cl_dir}/preamble.cl ${kernel_files} ${cl_dir}/entry.cl ${entry})
+    set(outputs ${cl})
+    if(VOXRAY_CLANG)
+        set(stamp ${VOXRAY_GENERATED}/opencl/${name}.cl.checked)
+        add_custom_command(OUTPUT ${stamp}
+            COMMAND ${VOXRAY_CLANG} -x cl -cl-std=CL1.2 -Xclang -finclude-default-header -fsyntax-only
+                    -Werror=implicit-function-declaration ${cl}
+            COMMAND ${CMAKE_COMMAND} -E touch ${stamp}
+            DEPENDS ${cl}
+            COMMENT "Checking the ${name} kernel as OpenCL C 1.2 (clang)" VERBATIM)
+        list(APPEND outputs ${stamp})
+    endif()
+    if(TARGET voxray_opencl)
+        voxray_opencl_add_program(${name} ${cl})
+    endif()
+    if(TARGET voxray_vulkan)
+        voxray_vulkan_add_program(${name} ${kernel_files})
+    endif()
+    add_custom_target(voxray_kernel_${name} ALL DEPENDS ${outputs})
+endfunction()
+
+# Writes the generated type list of every registered structure (voxray/generated/
+# structures.hpp, for the tool and the tests) and lets each backend write its table.
+function(voxray_finish_structures)
+    get_property(names GLOBAL PROPERTY VOXRAY_STRUCTURES)
+    get_property(types GLOBAL PROPERTY VOXRAY_STRUCTURE_TYPES)
+    set(includes "")
+    foreach(name ${names})
+        string(APPEND includes "#include \"voxray/${name}/${name}.hpp\"\n")
+    endforeach()
+    string(REPLACE ";" ", " type_list "${types}")
+    file(CONFIGURE OUTPUT ${VOXRAY_GENERATED}/voxray/generated/structures.hpp CONTENT
+"// Generated from the voxray_add_structure calls (scripts/cmake/voxray_kernels.cmake): do not edit.
+#pragma once
+#include \"voxray/core/type_list.hpp\"
+@includes@
+namespace voxray::registered {
+
+using structures = type_list<@type_list@>;
+
+}  // namespace voxray::registered
+" @ONLY)
+    if(COMMAND voxray_opencl_finish)
+        voxray_opencl_finish(${names})
+    endif()
+    if(COMMAND voxray_vulkan_finish)
+        voxray_vulkan_finish(${names})
+    endif()
 endfunction()

@@ -2,9 +2,12 @@
 // GLSL, replacing each `#include "voxray/..."` line with that file's text the first time
 // it appears (later inclusions are dropped, like #pragma once).
 //
-//   voxray_flatten INCLUDE_DIR OUTPUT [--cpp-string NAME] FILE...
+//   voxray_flatten INCLUDE_DIR OUTPUT [--cpp-string NAME] [--line-markers] FILE...
 // With --cpp-string the output is a C++ header defining
 //   inline constexpr const char NAME[] = R"...";
+// With --line-markers every file after the first (the first holds GLSL's #version, which
+// nothing may precede) gets #line directives, so that OpenCL and glslang errors point at
+// the original file and line (GLSL needs GL_GOOGLE_cpp_style_line_directive for them).
 #include <fstream>
 #include <iostream>
 #include <regex>
@@ -16,19 +19,30 @@
 namespace {
 
 std::set<std::string> seen;
+bool line_markers = false;
 
-void append(const std::string& include_dir, const std::string& path, std::ostream& out) {
+// The name errors should show: the path under the include dir, else the path as given.
+std::string shown_name(const std::string& include_dir, const std::string& path) {
+    std::string prefix = include_dir + "/";
+    return path.rfind(prefix, 0) == 0 ? path.substr(prefix.size()) : path;
+}
+
+void append(const std::string& include_dir, const std::string& path, std::ostream& out, bool mark) {
     if (!seen.insert(path).second) return;
     std::ifstream in(path);
     if (!in) throw std::runtime_error("voxray_flatten: cannot read " + path);
     static const std::regex include_line(R"(^\s*#\s*include\s+\"(voxray/[^\"]+)\")");
+    const std::string name = shown_name(include_dir, path);
+    if (mark) out << "#line 1 \"" << name << "\"\n";
     std::string line;
     std::smatch m;
-    while (std::getline(in, line)) {
-        if (std::regex_search(line, m, include_line))
-            append(include_dir, include_dir + "/" + m[1].str(), out);
-        else
+    for (int number = 1; std::getline(in, line); ++number) {
+        if (std::regex_search(line, m, include_line)) {
+            append(include_dir, include_dir + "/" + m[1].str(), out, mark);
+            if (mark) out << "#line " << number + 1 << " \"" << name << "\"\n";
+        } else {
             out << line << '\n';
+        }
     }
 }
 
@@ -36,17 +50,19 @@ void append(const std::string& include_dir, const std::string& path, std::ostrea
 
 int main(int argc, char** argv) try {
     if (argc < 4) {
-        std::cerr << "usage: voxray_flatten INCLUDE_DIR OUTPUT [--cpp-string NAME] FILE...\n";
+        std::cerr << "usage: voxray_flatten INCLUDE_DIR OUTPUT [--cpp-string NAME] [--line-markers] FILE...\n";
         return 2;
     }
     std::string include_dir = argv[1], output = argv[2], cpp_name;
     int first = 3;
-    if (std::string(argv[3]) == "--cpp-string" && argc > 5) {
-        cpp_name = argv[4];
-        first = 5;
+    for (; first < argc; ++first) {
+        std::string arg = argv[first];
+        if (arg == "--cpp-string" && first + 1 < argc) cpp_name = argv[++first];
+        else if (arg == "--line-markers") line_markers = true;
+        else break;
     }
     std::ostringstream text;
-    for (int i = first; i < argc; ++i) append(include_dir, argv[i], text);
+    for (int i = first; i < argc; ++i) append(include_dir, argv[i], text, line_markers && i > first);
 
     std::ofstream out(output);
     if (cpp_name.empty()) {

@@ -14,7 +14,7 @@
 #include "voxray/io/vox_reader.hpp"
 #include "voxray/opencl.hpp"
 #include "voxray/scenes/builtin.hpp"
-#include "voxray/structures/dense_grid.hpp"
+#include "voxray/dense_grid/dense_grid.hpp"
 #include "voxray/vulkan.hpp"
 
 using namespace voxray;

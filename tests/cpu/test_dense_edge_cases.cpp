@@ -7,7 +7,7 @@
 #include <gtest/gtest.h>
 
 #include "voxray/cpu.hpp"
-#include "voxray/structures/dense_grid.hpp"
+#include "voxray/dense_grid/dense_grid.hpp"
 
 using namespace voxray;
 

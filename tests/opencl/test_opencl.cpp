@@ -15,7 +15,7 @@
 #include "voxray/check/ray_sets.hpp"
 #include "voxray/cpu.hpp"
 #include "voxray/opencl.hpp"
-#include "voxray/structures/dense_grid.hpp"
+#include "voxray/dense_grid/dense_grid.hpp"
 
 namespace {
 
@@ -299,7 +299,27 @@ TEST(opencl, program_is_built_once_per_device) {
     auto ctx2 = opencl_detail::acquire_device_context({});
     EXPECT_EQ(ctx1.get(), ctx2.get());
     EXPECT_EQ(a.engine().program_build_seconds(), b.engine().program_build_seconds());
-    EXPECT_EQ(a.engine().program_build_seconds(), ctx1->build_seconds());
+    EXPECT_EQ(a.engine().program_build_seconds(), ctx1->build_seconds("dense_grid"));
+    EXPECT_GT(ctx1->build_seconds("dense_grid"), 0.0);
+}
+
+// Each structure is its own program: one that does not build fails with its name and the
+// build log, and the other structures keep working on the same device.
+TEST(opencl, a_broken_program_breaks_only_its_structure) {
+    auto ctx = opencl_detail::acquire_device_context({});
+    opencl_detail::program_source broken{"broken_toy", "__kernel void vx_closest_broken_toy( { no such syntax"};
+    try {
+        ctx->program(broken);
+        FAIL() << "expected a build error";
+    } catch (const opencl_error& e) {
+        EXPECT_NE(std::string(e.what()).find("broken_toy"), std::string::npos) << e.what();
+    }
+    dense_grid grid(single_voxel({1, 2, 3}));
+    tracer<opencl, dense_grid> t(grid);
+    std::vector<ray> rays{ray{{1.5f, 2.5f, -5.0f}, 0.0f, {0.0f, 0.0f, 1.0f}, INFINITY}};
+    std::vector<hit> hits(1);
+    t.closest_hit(rays, hits);
+    EXPECT_TRUE(hits[0].is_hit());
 }
 
 TEST(opencl, selecting_a_missing_device_names_what_exists) {

@@ -8,20 +8,21 @@
 #include <algorithm>
 #include <cstdint>
 #include <span>
+#include <string_view>
 #include <utility>
 #include <vector>
 
 #include "voxray/check/ray_sets.hpp"
 #include "voxray/core/box.hpp"
-#include "voxray/kernels/kernel_ids.hpp"
-#include "voxray/layout/dense_grid_layout.h"
-#include "voxray/structures/dense_grid.hpp"
-#include "voxray/structures/word_range.hpp"
+#include "voxray/dense_grid/layout.h"
+#include "voxray/dense_grid/dense_grid.hpp"
+#include "voxray/core/word_range.hpp"
 
 namespace voxray::test {
 
 struct edited_grid {
     using kernel = kernels::dense_grid_kernel;
+    static constexpr std::string_view name = "edited_grid";
 
     std::vector<std::uint32_t> words;
     std::vector<word_range> dirty;

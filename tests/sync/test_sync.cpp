@@ -22,7 +22,7 @@
 
 // The portable commit kernel compiled as C++ (scalar lanes supply uint and vx_load).
 namespace voxray::kernels::scalar {
-#include "voxray/kernels/commit.h"
+#include "voxray/sync/commit.h"
 }
 
 namespace {

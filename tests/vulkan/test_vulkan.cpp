@@ -16,7 +16,7 @@
 #include "voxray/check/compare.hpp"
 #include "voxray/check/ray_sets.hpp"
 #include "voxray/cpu.hpp"
-#include "voxray/structures/dense_grid.hpp"
+#include "voxray/dense_grid/dense_grid.hpp"
 #include "voxray/vulkan.hpp"
 
 using namespace voxray;

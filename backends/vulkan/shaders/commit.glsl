@@ -1,6 +1,6 @@
 // Compute entry point of the commit shader (voxray/vulkan/commit.hpp): one invocation per
-// word of a commit packet (layout/commit_layout.h) copies that word into the structure
-// blob. Follows backends/vulkan/shaders/preamble.glsl and the flattened kernels/commit.h.
+// word of a commit packet (sync/commit_layout.h) copies that word into the structure
+// blob. Follows backends/vulkan/shaders/preamble.glsl and the flattened sync/commit.h.
 
 // 64 invocations a group, like the trace shaders; the host uses the same number.
 layout(local_size_x = 64, local_size_y = 1, local_size_z = 1) in;

@@ -8,8 +8,10 @@
 // GL_EXT_buffer_reference_uvec2 only, not the shaderInt64 device feature.
 #extension GL_EXT_buffer_reference : require
 #extension GL_EXT_buffer_reference_uvec2 : require
+// #line "file" markers (the flattener's), so errors name the original kernel file.
+#extension GL_GOOGLE_cpp_style_line_directive : require
 #define VX_DIALECT_GLSL 1
-// A writable view of the blob for the commit shader (shaders/commit.glsl, kernels/commit.h),
+// A writable view of the blob for the commit shader (shaders/commit.glsl, sync/commit.h),
 // which copies incremental updates into it. The trace kernels keep the readonly vx_words of
 // kernels/prelude.h; declaring this type costs them nothing.
 layout(buffer_reference, std430, buffer_reference_align = 4) buffer vx_words_rw { uint w[]; };

@@ -1,4 +1,4 @@
-// Addressing inside one brick (layout/brickmap_layout.h): an occupancy bit per voxel,
+// Addressing inside one brick (brickmap/layout.h): an occupancy bit per voxel,
 // then one payload value per voxel, packed low bits first. Voxel index
 // i = lx | ly << b | lz << 2b (b = log2 edge), so an x row is a run of consecutive
 // indices that never straddles an occupancy word (edges 4, 8, 16 divide 32).
@@ -19,9 +19,10 @@
 #include <cstdint>
 #include <type_traits>
 
-namespace voxray {
+#include "voxray/brickmap/layout.h"
+#include "voxray/edit/edit_op.hpp"
 
-enum class edit_op { fill, erase, paint };
+namespace voxray {
 
 template <class Payload, int Edge>
 struct brick_codec {
@@ -42,7 +43,7 @@ struct brick_codec {
     static constexpr std::uint32_t group_mask = per_word == 32 ? 0xFFFFFFFFu : (1u << per_word) - 1;
 
     static constexpr std::uint32_t index(std::uint32_t lx, std::uint32_t ly, std::uint32_t lz) {
-        return lx | (ly << bits) | (lz << (2 * bits));
+        return VX_BM_VOXEL_INDEX(lx, ly, lz, std::uint32_t(bits));
     }
 
     static std::uint32_t load(const std::uint32_t* w) {

@@ -1,6 +1,6 @@
 // An editable two-level voxel world: a paged top grid of 32-bit cells (empty, solid with
 // one payload, or a brick index) over a growable pool of edge^3 bricks. The data lives in
-// the blob words themselves (layout/brickmap_layout.h), so blob() is zero-copy and a
+// the blob words themselves (brickmap/layout.h), so blob() is zero-copy and a
 // dirty range is a range of those words.
 //
 // Threads: set/get/apply may run from many threads at once. Writers hold a shared lock on
@@ -38,15 +38,18 @@
 #include "voxray/brickmap/brick_codec.hpp"
 #include "voxray/brickmap/brick_pool.hpp"
 #include "voxray/brickmap/dirty_set.hpp"
-#include "voxray/brickmap/regions.hpp"
+#include "voxray/edit/regions.hpp"
 #include "voxray/brickmap/top_grid.hpp"
 #include "voxray/core/box.hpp"
 #include "voxray/core/error.hpp"
-#include "voxray/kernels/kernel_ids.hpp"
 #include "voxray/model/build_threads.hpp"
 #include "voxray/model/voxel_model.hpp"
-#include "voxray/structures/blob.hpp"
-#include "voxray/structures/word_range.hpp"
+#include "voxray/core/blob.hpp"
+#include "voxray/core/word_range.hpp"
+
+#define VOXRAY_KERNEL_NAME brickmap
+#define VOXRAY_KERNEL_FILE "voxray/brickmap/kernel.h"
+#include "voxray/kernels/cpu_kernel.inc"
 
 namespace voxray {
 
@@ -89,8 +92,8 @@ public:
         std::uint32_t co = find_cell(q >> unsigned(codec::bits));
         if (!co) return 0;
         std::uint32_t c = codec::load(words_.data() + co);
-        if (!(c & VX_BM_CELL_IS_BRICK)) return Payload(c >> 1);
-        return codec::get(brick_ptr(c >> 1), local_index(q));
+        if (!(c & VX_BM_CELL_IS_BRICK)) return Payload(VX_BM_CELL_VALUE(c));
+        return codec::get(brick_ptr(VX_BM_CELL_VALUE(c)), local_index(q));
     }
     // Sets voxel p (inside bounds(), else voxray::error) to v; 0 erases.
     void set(glm::ivec3 p, Payload v) {
@@ -283,7 +286,7 @@ private:
         for (;;) {
             std::uint32_t c = cell.load(std::memory_order_acquire);
             if (c & VX_BM_CELL_IS_BRICK) {
-                std::uint32_t b = c >> 1;
+                std::uint32_t b = VX_BM_CELL_VALUE(c);
                 std::uint32_t m = lock_brick(b);
                 typename codec::result r = write(brick_ptr(b));
                 std::uint32_t n = (m & count_mask) + std::uint32_t(r.delta);
@@ -294,11 +297,11 @@ private:
                 unlock_brick(b, m);
                 return status::ok;
             }
-            auto s = Payload(c >> 1);
+            auto s = Payload(VX_BM_CELL_VALUE(c));
             if (s == 0 && op != edit_op::fill) return status::ok;
             if (uniform && s != 0 && op != edit_op::erase && s == v) return status::ok;
             if (uniform && covered && (op == edit_op::erase || fits_solid(v))) {
-                std::uint32_t nc = op == edit_op::erase ? 0u : std::uint32_t(v) << 1;
+                std::uint32_t nc = op == edit_op::erase ? 0u : VX_BM_SOLID_CELL(std::uint32_t(v));
                 if (cell.compare_exchange_strong(c, nc, std::memory_order_acq_rel)) {
                     ctx.words.push_back(co);
                     ctx.delta += std::int64_t(full) * ((nc ? 1 : 0) - (c ? 1 : 0));
@@ -312,7 +315,7 @@ private:
             if (s) codec::fill_solid(brick, s);
             std::atomic_ref<std::uint32_t> meta(meta_[b]);  // private until the cell is published
             meta.store((meta.load(std::memory_order_relaxed) & dirty_bit) | (s ? full : 0u), std::memory_order_relaxed);
-            if (!cell.compare_exchange_strong(c, (b << 1) | VX_BM_CELL_IS_BRICK, std::memory_order_acq_rel)) {
+            if (!cell.compare_exchange_strong(c, VX_BM_BRICK_CELL(b), std::memory_order_acq_rel)) {
                 if (s) codec::clear(brick);
                 meta.store(meta.load(std::memory_order_relaxed) & dirty_bit, std::memory_order_relaxed);
                 pool_.recycle(b);
@@ -366,7 +369,7 @@ private:
             Payload v{};
             std::uint32_t cell;
             if (n == 0) cell = 0;  // empty bricks are all-zero words already
-            else if (n == full && codec::uniform(brick, v) && fits_solid(v)) cell = std::uint32_t(v) << 1;
+            else if (n == full && codec::uniform(brick, v) && fits_solid(v)) cell = VX_BM_SOLID_CELL(std::uint32_t(v));
             else { meta_[b] = m; continue; }
             codec::clear(brick);
             words_[owner_[b]] = cell;

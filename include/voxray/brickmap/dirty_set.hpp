@@ -11,7 +11,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "voxray/structures/word_range.hpp"
+#include "voxray/core/word_range.hpp"
 
 namespace voxray {
 

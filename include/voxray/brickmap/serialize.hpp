@@ -189,11 +189,11 @@ struct brickmap_io {
                 if (cell.x >= m.cells_.x || cell.y >= m.cells_.y || cell.z >= m.cells_.z)
                     bad(co, "top cell outside the world holds", c, "");
                 if (!(c & VX_BM_CELL_IS_BRICK)) {
-                    if ((c >> 1) > codec::value_mask) bad(co, "solid cell payload", c >> 1, " is too wide");
+                    if (VX_BM_CELL_VALUE(c) > codec::value_mask) bad(co, "solid cell payload", VX_BM_CELL_VALUE(c), " is too wide");
                     count += map::full;
                     continue;
                 }
-                std::uint32_t b = c >> 1;
+                std::uint32_t b = VX_BM_CELL_VALUE(c);
                 if (b >= bricks_used) bad(co, "brick index", b, " is not below the bricks used, ", bricks_used);
                 if (brick_seen[b]) bad(co, "brick", b, " is referenced twice");
                 brick_seen[b] = true;

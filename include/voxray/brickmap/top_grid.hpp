@@ -1,5 +1,5 @@
 // The brickmap blob's geometry: header, page table, page pool and brick pool offsets
-// (layout/brickmap_layout.h), the world box, and relayout() that grows the page or brick
+// (brickmap/layout.h), the world box, and relayout() that grows the page or brick
 // area in place of the old blob. The brick payload is not its business (brick_codec).
 //
 //   world (voxels) --/edge--> top cells --/16--> pages (a 16^3 block of cells)
@@ -13,8 +13,8 @@
 
 #include "voxray/core/box.hpp"
 #include "voxray/core/error.hpp"
-#include "voxray/layout/brickmap_layout.h"
-#include "voxray/structures/blob.hpp"
+#include "voxray/brickmap/layout.h"
+#include "voxray/core/blob.hpp"
 
 namespace voxray {
 
@@ -51,12 +51,10 @@ protected:
 
     // Page table word of brick (= top cell) coordinate bc.
     std::uint32_t page_slot(glm::uvec3 bc) const {
-        glm::uvec3 p = bc >> unsigned(VX_BM_PAGE_BITS);
-        return VX_BM_HEADER_WORDS + p.x + pages_dim_.x * (p.y + pages_dim_.y * p.z);
+        return VX_BM_HEADER_WORDS + VX_BM_PAGE_SLOT(bc.x, bc.y, bc.z, pages_dim_.x, pages_dim_.x * pages_dim_.y);
     }
     std::uint32_t cell_offset(std::uint32_t page, glm::uvec3 bc) const {
-        glm::uvec3 l = bc & glm::uvec3(VX_BM_PAGE_MASK);
-        return pages_off_ + page * std::uint32_t(VX_BM_PAGE_WORDS) + (l.x | (l.y << 4) | (l.z << 8));
+        return pages_off_ + page * std::uint32_t(VX_BM_PAGE_WORDS) + VX_BM_PAGE_CELL(bc.x, bc.y, bc.z);
     }
 
     // Re-lays the blob out with new capacities (never below what is in use: `bricks_in_use`

@@ -6,7 +6,7 @@
 
 #include <glm/vec3.hpp>
 
-#include "voxray/layout/ray_hit_layout.h"
+#include "voxray/core/ray_hit_layout.h"
 
 namespace voxray {
 

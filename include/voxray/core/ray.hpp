@@ -1,5 +1,5 @@
 // A ray in world (voxel) units: one unit is one voxel edge. Layout-compatible with
-// the kernels' vx_ray (see layout/ray_hit_layout.h), so spans of rays go to any backend
+// the kernels' vx_ray (see core/ray_hit_layout.h), so spans of rays go to any backend
 // without conversion.
 #pragma once
 #include <cstddef>
@@ -7,7 +7,7 @@
 
 #include <glm/vec3.hpp>
 
-#include "voxray/layout/ray_hit_layout.h"
+#include "voxray/core/ray_hit_layout.h"
 
 namespace voxray {
 

@@ -118,7 +118,7 @@ VX_FN vx_dda vx_dda_begin_scaled(vx_ray r, float gx, float gy, float gz, int ex,
     d.t = tenter;
     d.tmax = r.tmax;
     d.status = vx_sel(valid, VX_STATUS_ACTIVE, VX_STATUS_MISS);
-    d.steps = vx_sel(valid, 0u, 0u); /* a zero of lane type */
+    d.steps = vx_u32_splat(0u);
     return d;
 }
 
@@ -150,7 +150,7 @@ VX_FN vx_dda vx_dda_move_sized(vx_dda d, vx_mask go, vx_i32 size) {
 }
 
 /* vx_dda_move_sized over unit cells. */
-VX_FN vx_dda vx_dda_move(vx_dda d, vx_mask go) { return vx_dda_move_sized(d, go, vx_sel(go, 1, 1)); }
+VX_FN vx_dda vx_dda_move(vx_dda d, vx_mask go) { return vx_dda_move_sized(d, go, vx_i32_splat(1)); }
 
 /* vx_dda_move, and lanes that leave the grid [0, e) miss. */
 VX_FN vx_dda vx_dda_advance(vx_dda d, vx_mask go, int ex, int ey, int ez) {
@@ -160,19 +160,67 @@ VX_FN vx_dda vx_dda_advance(vx_dda d, vx_mask go, int ex, int ey, int ez) {
     return d;
 }
 
-/* Per lane: a where m is set, else b. The CPU's SIMD stream uses it to start new rays in
- * lanes whose ray has finished. */
-VX_FN vx_dda vx_dda_select(vx_mask m, vx_dda a, vx_dda b) {
-    vx_dda d;
-    d.ox = vx_sel(m, a.ox, b.ox); d.oy = vx_sel(m, a.oy, b.oy); d.oz = vx_sel(m, a.oz, b.oz);
-    d.ix = vx_sel(m, a.ix, b.ix); d.iy = vx_sel(m, a.iy, b.iy); d.iz = vx_sel(m, a.iz, b.iz);
-    d.sx = vx_sel(m, a.sx, b.sx); d.sy = vx_sel(m, a.sy, b.sy); d.sz = vx_sel(m, a.sz, b.sz);
-    d.cx = vx_sel(m, a.cx, b.cx); d.cy = vx_sel(m, a.cy, b.cy); d.cz = vx_sel(m, a.cz, b.cz);
-    d.nx = vx_sel(m, a.nx, b.nx); d.ny = vx_sel(m, a.ny, b.ny); d.nz = vx_sel(m, a.nz, b.nz);
-    d.t = vx_sel(m, a.t, b.t);
-    d.tmax = vx_sel(m, a.tmax, b.tmax);
-    d.face = vx_sel(m, a.face, b.face);
-    d.status = vx_sel(m, a.status, b.status);
-    d.steps = vx_sel(m, a.steps, b.steps);
+/* One axis of vx_dda_reenter: the index, in cells of `sub` voxels, of the sub-cell of the
+ * cell [c, c + n * sub) where the ray is at parameter t. On the axis the cell was entered
+ * through that is the first (or last) slab exactly; elsewhere the floor of the point at t,
+ * clamped into the cell (the point is inside up to rounding). Power-of-two sizes keep the
+ * scaling exact. */
+VX_FN vx_i32 vx_dda_reenter_axis(vx_f32 o, vx_f32 dir, vx_f32 t, vx_i32 c, vx_i32 sub, vx_i32 n, vx_u32 face,
+                                 uint face_neg, uint face_pos) {
+    vx_f32 p = (o + dir * t - vx_i2f(c)) / vx_i2f(sub);
+    vx_i32 l = vx_f2i(vx_floor(vx_fmin(vx_fmax(p, 0.0f), vx_i2f(n - 1))));
+    return vx_sel(face == face_neg, 0, vx_sel(face == face_pos, n - 1, l));
+}
+
+/* Shared walk primitive: continue the walk, in lanes m, one level down inside the cell it
+ * is in (min voxel d.c, `size` voxels wide), in sub-cells of `sub` voxels, starting at the
+ * sub-cell where the ray entered the cell (at d.t, through d.face). (dx, dy, dz) is the
+ * ray direction. Every crossing t stays (plane - o) / d in voxel units, so a structure
+ * that descends (brickmap, NAADF, a DAG's octants) meets the same planes, bit for bit,
+ * as the reference walk over voxels. */
+VX_FN vx_dda vx_dda_reenter(vx_dda d, vx_f32 dx, vx_f32 dy, vx_f32 dz, vx_i32 size, vx_i32 sub, vx_mask m) {
+    vx_f32 t = vx_sel(m, d.t, 0.0f);
+    vx_i32 n = vx_sel(m, size / sub, 1);
+    vx_i32 lx = vx_dda_reenter_axis(d.ox, vx_sel(m, dx, 0.0f), t, d.cx, sub, n, d.face, VX_FACE_NEG_X, VX_FACE_POS_X);
+    vx_i32 ly = vx_dda_reenter_axis(d.oy, vx_sel(m, dy, 0.0f), t, d.cy, sub, n, d.face, VX_FACE_NEG_Y, VX_FACE_POS_Y);
+    vx_i32 lz = vx_dda_reenter_axis(d.oz, vx_sel(m, dz, 0.0f), t, d.cz, sub, n, d.face, VX_FACE_NEG_Z, VX_FACE_POS_Z);
+    d.cx = vx_sel(m, d.cx + lx * sub, d.cx);
+    d.cy = vx_sel(m, d.cy + ly * sub, d.cy);
+    d.cz = vx_sel(m, d.cz + lz * sub, d.cz);
+    d.nx = vx_sel(m, vx_dda_exit_t_sized(d.cx, sub, d.sx, d.ox, d.ix), d.nx);
+    d.ny = vx_sel(m, vx_dda_exit_t_sized(d.cy, sub, d.sy, d.oy, d.iy), d.ny);
+    d.nz = vx_sel(m, vx_dda_exit_t_sized(d.cz, sub, d.sz, d.oz, d.iz), d.nz);
+    return d;
+}
+
+/* Shared walk primitive: in lanes m, leave the empty box [lo, hi) (voxels; the walk is
+ * inside it) in one move, to the voxel just past its exit face; every axis whose plane
+ * lies at the exit t steps (edges and corners, as in vx_dda_move_sized). The walk is
+ * then at voxel level (cell size 1); lanes past tmax miss. Leaving the grid is the
+ * caller's test. Crossings are (plane - o) / d at integer planes, as everywhere. */
+VX_FN vx_dda vx_dda_leave_box(vx_dda d, vx_f32 dx, vx_f32 dy, vx_f32 dz, vx_i32 lox, vx_i32 loy, vx_i32 loz,
+                              vx_i32 hix, vx_i32 hiy, vx_i32 hiz, vx_mask m) {
+    vx_f32 ex = vx_dda_exit_t_sized(lox, hix - lox, d.sx, d.ox, d.ix);
+    vx_f32 ey = vx_dda_exit_t_sized(loy, hiy - loy, d.sy, d.oy, d.iy);
+    vx_f32 ez = vx_dda_exit_t_sized(loz, hiz - loz, d.sz, d.oz, d.iz);
+    vx_f32 texit = vx_fmin(ex, vx_fmin(ey, ez));
+    vx_mask mx = m && ex == texit, my = m && ey == texit, mz = m && ez == texit;
+    vx_f32 t = vx_sel(m, texit, 0.0f);
+    /* Off the exit axes the ray is inside the box at t (up to rounding): clamp. */
+    vx_i32 px = vx_f2i(vx_floor(vx_fmin(vx_fmax(d.ox + vx_sel(m, dx, 0.0f) * t, vx_i2f(lox)), vx_i2f(hix - 1))));
+    vx_i32 py = vx_f2i(vx_floor(vx_fmin(vx_fmax(d.oy + vx_sel(m, dy, 0.0f) * t, vx_i2f(loy)), vx_i2f(hiy - 1))));
+    vx_i32 pz = vx_f2i(vx_floor(vx_fmin(vx_fmax(d.oz + vx_sel(m, dz, 0.0f) * t, vx_i2f(loz)), vx_i2f(hiz - 1))));
+    d.cx = vx_sel(m, vx_sel(mx, vx_sel(d.sx > 0, hix, lox - 1), px), d.cx);
+    d.cy = vx_sel(m, vx_sel(my, vx_sel(d.sy > 0, hiy, loy - 1), py), d.cy);
+    d.cz = vx_sel(m, vx_sel(mz, vx_sel(d.sz > 0, hiz, loz - 1), pz), d.cz);
+    d.nx = vx_sel(m, vx_dda_exit_t(d.cx, d.sx, d.ox, d.ix), d.nx);
+    d.ny = vx_sel(m, vx_dda_exit_t(d.cy, d.sy, d.oy, d.iy), d.ny);
+    d.nz = vx_sel(m, vx_dda_exit_t(d.cz, d.sz, d.oz, d.iz), d.nz);
+    d.face = vx_sel(mx, vx_sel(d.sx > 0, VX_FACE_NEG_X, VX_FACE_POS_X),
+             vx_sel(my, vx_sel(d.sy > 0, VX_FACE_NEG_Y, VX_FACE_POS_Y),
+             vx_sel(mz, vx_sel(d.sz > 0, VX_FACE_NEG_Z, VX_FACE_POS_Z), d.face)));
+    d.status = vx_sel(m && texit > d.tmax, VX_STATUS_MISS, d.status);
+    d.t = vx_sel(m, vx_fmax(d.t, texit), d.t);
+    d.steps = d.steps + vx_sel(m, 1u, 0u);
     return d;
 }

@@ -7,15 +7,24 @@
  * Rules for kernel code (so that the SIMD mode stays one source with the GPU modes):
  *  - per-lane types are vx_f32, vx_i32, vx_u32 and vx_mask; uniform values use float/uint/int;
  *  - no `if` on per-lane values inside a step function: use vx_sel(mask, a, b);
- *  - conversions and loads go through the vx_* helpers below; structs are passed by value
- *    and returned (no inout, no pointers), which all three languages allow.
+ *  - conversions and loads go through the vx_* helpers below; lane-typed constants are
+ *    vx_f32_splat / vx_i32_splat / vx_u32_splat(x), a lookup only some lanes need is
+ *    vx_gather_masked(blob, mask, index) (0 in the other lanes, which load nothing);
+ *  - structs are passed by value and returned, which all three languages allow; where a
+ *    state is too big to copy, a function takes VX_INOUT(T) s, reads and writes
+ *    VX_REF(s).field, and is called with VX_ADDR(state) (a reference in C++ and GLSL's
+ *    inout, a pointer in OpenCL C, which has no references);
+ *  - kernel states hold per-lane fields only: the CPU stream merges them lane by lane
+ *    generically (vx_select_state in cpu_lanes.hpp), so no kernel writes a select;
+ *  - a structure kernel `s` names its entry points vx_<s>_load, _begin, _step, _finish,
+ *    _status and _trace; `mode` arguments are VX_MODE_* constants at every call site.
  * In C++ the helpers are functions defined per lane namespace (cpu_lanes.hpp); here they
  * are macros for the GPU dialects.
  */
 #ifndef VOXRAY_KERNELS_PRELUDE_H
 #define VOXRAY_KERNELS_PRELUDE_H
 
-#include "voxray/layout/ray_hit_layout.h"
+#include "voxray/core/ray_hit_layout.h"
 
 #define vx_sel(m, a, b) ((m) ? (a) : (b))
 
@@ -38,6 +47,13 @@ typedef uint vx_u32;
 typedef bool vx_mask;
 #define vx_load(b, i) ((b)[(i)])
 #define vx_gather(b, i) ((b)[(i)])
+#define vx_gather_masked(b, m, i) ((m) ? (b)[(i)] : 0u)
+#define vx_f32_splat(x) ((float)(x))
+#define vx_i32_splat(x) ((int)(x))
+#define vx_u32_splat(x) ((uint)(x))
+#define VX_INOUT(T) T*
+#define VX_REF(p) (*(p))
+#define VX_ADDR(x) (&(x))
 #define vx_i2f(x) convert_float(x)
 #define vx_u2f(x) convert_float(x)
 #define vx_f2i(x) convert_int(x)
@@ -64,6 +80,13 @@ static inline float vx_fmax(float a, float b) { return a > b ? a : b; }
 #define vx_mask bool
 #define vx_load(b, i) ((b).w[(i)])
 #define vx_gather(b, i) ((b).w[(i)])
+#define vx_gather_masked(b, m, i) ((m) ? (b).w[(i)] : 0u)
+#define vx_f32_splat(x) float(x)
+#define vx_i32_splat(x) int(x)
+#define vx_u32_splat(x) uint(x)
+#define VX_INOUT(T) inout T
+#define VX_REF(p) (p)
+#define VX_ADDR(x) (x)
 #define vx_i2f(x) float(x)
 #define vx_u2f(x) float(x)
 #define vx_f2i(x) int(x)
@@ -90,6 +113,9 @@ layout(buffer_reference, std430, buffer_reference_align = 4) readonly buffer vx_
 #define VX_END_STRUCT(name) };
 #define VX_BLOB const std::uint32_t*
 #define VX_INF __builtin_inff()
+#define VX_INOUT(T) T&
+#define VX_REF(p) (p)
+#define VX_ADDR(x) (x)
 #endif
 
 /* A float is finite when its exponent bits are not all ones (works without isfinite,

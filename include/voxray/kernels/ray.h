@@ -1,4 +1,4 @@
-/* Kernel-side ray and hit: per-lane fields in the order of layout/ray_hit_layout.h, so
+/* Kernel-side ray and hit: per-lane fields in the order of core/ray_hit_layout.h, so
  * with scalar lanes (GPU dialects) they are exactly the records in the ray/hit buffers.
  * Included once per lane set; no include guard on purpose (see kernels/cpu_lanes.hpp). */
 VX_STRUCT(vx_ray)

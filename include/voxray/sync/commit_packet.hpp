@@ -1,4 +1,4 @@
-// Packing a commit packet (layout/commit_layout.h) on the host: the table of records and
+// Packing a commit packet (sync/commit_layout.h) on the host: the table of records and
 // the changed words behind it, in one buffer the GPU backends send with one transfer.
 // The packer owns a grow-only vector, so a render loop that updates every frame
 // allocates nothing once the largest edit has been seen.
@@ -8,8 +8,8 @@
 #include <span>
 #include <vector>
 
-#include "voxray/layout/commit_layout.h"
-#include "voxray/structures/word_range.hpp"
+#include "voxray/sync/commit_layout.h"
+#include "voxray/core/word_range.hpp"
 #include "voxray/sync/dirty_ranges.hpp"
 
 namespace voxray::sync {

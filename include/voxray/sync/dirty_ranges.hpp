@@ -10,7 +10,7 @@
 #include <vector>
 
 #include "voxray/core/error.hpp"
-#include "voxray/structures/word_range.hpp"
+#include "voxray/core/word_range.hpp"
 
 namespace voxray::sync {
 

@@ -3,7 +3,7 @@
 
 #include "voxray/cpu.hpp"
 #include "voxray/opencl.hpp"
-#include "voxray/structures/dense_grid.hpp"
+#include "voxray/dense_grid/dense_grid.hpp"
 #include "voxray/vulkan.hpp"
 
 template <class Backend>

@@ -12,7 +12,7 @@
 #include "voxray/core/ray.hpp"
 #include "voxray/cpu/thread_pool.hpp"
 #include "voxray/kernels/cpu_lanes.hpp"
-#include "voxray/structures/word_range.hpp"
+#include "voxray/core/word_range.hpp"
 #include "voxray/sync/dirty_ranges.hpp"
 
 namespace voxray {
@@ -48,8 +48,8 @@ inline hit from_lane(const kernels::scalar::vx_hit& h) {
 // it would with fixed packets). Two independent groups are stepped in turn so that one
 // group's gathers overlap the other's arithmetic (a single group is latency-bound). Per
 // ray, the arithmetic is exactly the scalar kernel's: results are identical bit for bit.
-template <class Kernel>
-void trace_stream(const std::uint32_t* blob, const ray* rays, hit* hits, std::size_t count, std::uint32_t mode) {
+template <class Kernel, std::uint32_t Mode>
+void trace_stream(const std::uint32_t* blob, const ray* rays, hit* hits, std::size_t count) {
     using namespace kernels::simd;
     using K = kernel_lanes<Kernel>;
     constexpr int W = kernels::simd_width;
@@ -73,7 +73,7 @@ void trace_stream(const std::uint32_t* blob, const ray* rays, hit* hits, std::si
             q.lane_ray[k] = next < count ? next++ : count;
             load(q.rays, k, q.lane_ray[k] < count ? rays[q.lane_ray[k]] : idle);
         }
-        q.state = K::begin(g, q.rays, mode);
+        q.state = K::begin(g, q.rays);
     }
     // Writes out finished lanes and restarts them; false once the group has nothing left.
     // Refilling costs a finish, a begin and a lane merge of the whole state, so it waits
@@ -83,8 +83,8 @@ void trace_stream(const std::uint32_t* blob, const ray* rays, hit* hits, std::si
         int done = 0;
         for (int k = 0; k < W; ++k) done += finished[k] != 0;
         if (done == 0 || (done < W / 2 && next < count)) return true;
-        vx_hit h = K::finish(blob, g, q.state);
-        vx_mask restart = finished & 0;
+        vx_hit h = K::template finish<Mode>(blob, g, q.state);
+        vx_mask restart = vx_i32_splat(0);
         bool busy = false;
         for (int k = 0; k < W; ++k) {
             if (finished[k] && q.lane_ray[k] < count) {
@@ -97,7 +97,7 @@ void trace_stream(const std::uint32_t* blob, const ray* rays, hit* hits, std::si
             }
             busy |= q.lane_ray[k] < count;
         }
-        if (vx_any(restart)) q.state = K::select(restart, K::begin(g, q.rays, mode), q.state);
+        if (vx_any(restart)) q.state = vx_select_state(restart, K::begin(g, q.rays), q.state);
         return busy;
     };
     for (bool any_busy = true; any_busy;) {
@@ -141,22 +141,29 @@ public:
     std::vector<std::uint32_t> download_blob() const { return blob_; }
 
     void trace(std::span<const ray> rays, std::span<hit> hits, std::uint32_t mode) {
-        const std::uint32_t* blob = blob_.data();
-        std::size_t batches = (rays.size() + batch_rays - 1) / batch_rays;
-        pool_->parallel_for(batches, [&](std::size_t b) {
-            std::size_t begin = b * batch_rays, end = std::min(rays.size(), begin + batch_rays);
-            if constexpr (Simd) {
-                trace_stream<Kernel>(blob, &rays[begin], &hits[begin], end - begin, mode);
-            } else {
-                for (std::size_t i = begin; i < end; ++i)
-                    hits[i] = from_lane(kernels::scalar::kernel_lanes<Kernel>::trace(blob, to_lane(rays[i]), mode));
-            }
-        });
+        // The mode becomes a constant of the kernel: any-hit compiles to its own code.
+        if (mode == VX_MODE_ANY) trace_mode<VX_MODE_ANY>(rays, hits);
+        else trace_mode<VX_MODE_CLOSEST>(rays, hits);
     }
 
     unsigned threads() const { return pool_->size(); }
 
 private:
+    template <std::uint32_t Mode>
+    void trace_mode(std::span<const ray> rays, std::span<hit> hits) {
+        const std::uint32_t* blob = blob_.data();
+        std::size_t batches = (rays.size() + batch_rays - 1) / batch_rays;
+        pool_->parallel_for(batches, [&](std::size_t b) {
+            std::size_t begin = b * batch_rays, end = std::min(rays.size(), begin + batch_rays);
+            if constexpr (Simd) {
+                trace_stream<Kernel, Mode>(blob, &rays[begin], &hits[begin], end - begin);
+            } else {
+                using K = kernels::scalar::kernel_lanes<Kernel>;
+                for (std::size_t i = begin; i < end; ++i) hits[i] = from_lane(K::template trace<Mode>(blob, to_lane(rays[i])));
+            }
+        });
+    }
+
     void count_upload(std::uint64_t bytes) {
         last_bytes_ = bytes;
         total_bytes_ += bytes;

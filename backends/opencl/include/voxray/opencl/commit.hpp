@@ -1,6 +1,6 @@
 // Incremental updates on OpenCL: the dirty words of a structure blob travel to the device
-// in one commit packet (layout/commit_layout.h) with one write, and the portable commit
-// kernel (kernels/commit.h, entry point vx_commit in kernels/entry.cl) scatters them into
+// in one commit packet (sync/commit_layout.h) with one write, and the portable commit
+// kernel (sync/commit.h, entry point vx_commit in kernels/commit.cl, a program of its own) scatters them into
 // the device blob. Cost: one transfer of the changed words plus a small table, whatever
 // the size of the world.
 #pragma once
@@ -49,8 +49,8 @@ public:
 private:
     void create_kernel() {
         cl_int status = CL_SUCCESS;
-        kernel_ = kernel_handle(clCreateKernel(ctx_->program(), "vx_commit", &status));
-        check(status, "clCreateKernel", "looking up vx_commit (backends/opencl/kernels/entry.cl)");
+        kernel_ = kernel_handle(clCreateKernel(ctx_->program(commit_program), "vx_commit", &status));
+        check(status, "clCreateKernel", "looking up vx_commit (backends/opencl/kernels/commit.cl)");
         std::size_t kernel_max = 0;
         check(clGetKernelWorkGroupInfo(kernel_.get(), ctx_->device(), CL_KERNEL_WORK_GROUP_SIZE, sizeof kernel_max,
                                        &kernel_max, nullptr),

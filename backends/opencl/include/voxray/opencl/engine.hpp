@@ -11,6 +11,7 @@
 #include <memory>
 #include <span>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "voxray/core/hit.hpp"
@@ -22,34 +23,33 @@
 
 namespace voxray::opencl_detail {
 
+// The embedded program of structure kernel `name` (a null source when it has none).
+constexpr program_source find_program(std::string_view name) {
+    for (const program_source& p : registered_programs)
+        if (p.name == name) return p;
+    return {name, nullptr};
+}
+
 // Work-items per group. 64 fills a wavefront (AMD) or two warps (NVIDIA) and is a
 // multiple of every common SIMD width; the kernel may allow less (register pressure).
 inline constexpr std::size_t preferred_group_size = 64;
 
 template <class Kernel>
 class opencl_engine {
+    static constexpr program_source program_ = find_program(Kernel::name);
+    static_assert(program_.source != nullptr,
+                  "this structure has no OpenCL program: register it with voxray_add_structure (CMake)");
+
 public:
     explicit opencl_engine(opencl_options options) : ctx_(acquire_device_context(options)), committer_(ctx_) {
         cl_int status = CL_SUCCESS;
         queue_ = queue_handle(clCreateCommandQueue(ctx_->context(), ctx_->device(), 0, &status));
         check(status, "clCreateCommandQueue", "opening device '" + ctx_->device_name() + "'");
-
-        std::string entry = std::string("vx_trace_") + Kernel::name;
-        kernel_ = kernel_handle(clCreateKernel(ctx_->program(), entry.c_str(), &status));
-        if (status == CL_INVALID_KERNEL_NAME)
-            throw opencl_error("OpenCL: the voxray program has no kernel '" + entry + "': add VX_OPENCL_ENTRY(" +
-                                   Kernel::name + ") to backends/opencl/kernels/entry.cl",
-                               status);
-        check(status, "clCreateKernel", "looking up " + entry);
-
-        std::size_t kernel_max = 0, multiple = 1;
-        check(clGetKernelWorkGroupInfo(kernel_.get(), ctx_->device(), CL_KERNEL_WORK_GROUP_SIZE, sizeof kernel_max,
-                                       &kernel_max, nullptr),
-              "clGetKernelWorkGroupInfo");
-        check(clGetKernelWorkGroupInfo(kernel_.get(), ctx_->device(), CL_KERNEL_PREFERRED_WORK_GROUP_SIZE_MULTIPLE,
-                                       sizeof multiple, &multiple, nullptr),
-              "clGetKernelWorkGroupInfo");
-        local_size_ = choose_group_size(kernel_max, multiple);
+        cl_program program = ctx_->program(program_);
+        closest_ = create_kernel(program, std::string("vx_closest_") + Kernel::name);
+        any_ = create_kernel(program, std::string("vx_any_") + Kernel::name);
+        // Both kernels come from one source; the smaller limit serves both.
+        local_size_ = std::min(group_size_for(closest_.get()), group_size_for(any_.get()));
     }
 
     // Copies the blob to the device (blocking: the caller's span may die right after).
@@ -118,15 +118,14 @@ public:
                                        rays.data() + first, 0, nullptr, nullptr),
                   "clEnqueueWriteBuffer", "sending rays");
             cl_mem blob = blob_.get(), in = rays_.get(), out = hits_.get();
-            cl_uint m = mode;
-            check(clSetKernelArg(kernel_.get(), 0, sizeof blob, &blob), "clSetKernelArg", "setting the blob");
-            check(clSetKernelArg(kernel_.get(), 1, sizeof in, &in), "clSetKernelArg", "setting the rays");
-            check(clSetKernelArg(kernel_.get(), 2, sizeof out, &out), "clSetKernelArg", "setting the hits");
-            check(clSetKernelArg(kernel_.get(), 3, sizeof count, &count), "clSetKernelArg", "setting the count");
-            check(clSetKernelArg(kernel_.get(), 4, sizeof m, &m), "clSetKernelArg", "setting the mode");
+            cl_kernel kernel = mode == VX_MODE_ANY ? any_.get() : closest_.get();
+            check(clSetKernelArg(kernel, 0, sizeof blob, &blob), "clSetKernelArg", "setting the blob");
+            check(clSetKernelArg(kernel, 1, sizeof in, &in), "clSetKernelArg", "setting the rays");
+            check(clSetKernelArg(kernel, 2, sizeof out, &out), "clSetKernelArg", "setting the hits");
+            check(clSetKernelArg(kernel, 3, sizeof count, &count), "clSetKernelArg", "setting the count");
             // The global size is rounded up to whole groups; the kernel skips the extra items.
             std::size_t global = (std::size_t(count) + local_size_ - 1) / local_size_ * local_size_;
-            check(clEnqueueNDRangeKernel(queue_.get(), kernel_.get(), 1, nullptr, &global, &local_size_, 0, nullptr,
+            check(clEnqueueNDRangeKernel(queue_.get(), kernel, 1, nullptr, &global, &local_size_, 0, nullptr,
                                          nullptr),
                   "clEnqueueNDRangeKernel", "tracing " + std::to_string(count) + " rays");
             check(clEnqueueReadBuffer(queue_.get(), hits_.get(), CL_TRUE, 0, std::size_t(count) * VX_HIT_BYTES,
@@ -137,8 +136,8 @@ public:
 
     std::string device_name() const { return ctx_->device_name(); }
     std::string platform_name() const { return ctx_->platform_name(); }
-    // Seconds the shared program took to build (once per device and process).
-    double program_build_seconds() const { return ctx_->build_seconds(); }
+    // Seconds this structure's program took to build (once per device and process).
+    double program_build_seconds() const { return ctx_->build_seconds(program_.name); }
     bool correctly_rounded_division() const { return ctx_->correctly_rounded_division(); }
     std::uint64_t max_alloc_bytes() const { return ctx_->max_alloc_bytes(); }
     std::size_t work_group_size() const { return local_size_; }
@@ -147,6 +146,24 @@ private:
     void count_upload(std::uint64_t bytes) {
         last_bytes_ = bytes;
         total_bytes_ += bytes;
+    }
+
+    kernel_handle create_kernel(cl_program program, const std::string& entry) const {
+        cl_int status = CL_SUCCESS;
+        kernel_handle kernel(clCreateKernel(program, entry.c_str(), &status));
+        check(status, "clCreateKernel", "looking up " + entry + " (backends/opencl/kernels/entry.cl)");
+        return kernel;
+    }
+
+    std::size_t group_size_for(cl_kernel kernel) const {
+        std::size_t kernel_max = 0, multiple = 1;
+        check(clGetKernelWorkGroupInfo(kernel, ctx_->device(), CL_KERNEL_WORK_GROUP_SIZE, sizeof kernel_max,
+                                       &kernel_max, nullptr),
+              "clGetKernelWorkGroupInfo");
+        check(clGetKernelWorkGroupInfo(kernel, ctx_->device(), CL_KERNEL_PREFERRED_WORK_GROUP_SIZE_MULTIPLE,
+                                       sizeof multiple, &multiple, nullptr),
+              "clGetKernelWorkGroupInfo");
+        return choose_group_size(kernel_max, multiple);
     }
 
     // The largest multiple of the device's preferred multiple that is at most
@@ -159,7 +176,7 @@ private:
 
     std::shared_ptr<device_context> ctx_;
     queue_handle queue_;
-    kernel_handle kernel_;
+    kernel_handle closest_, any_;
     committer committer_;
     // Read-write: the commit kernel writes it; the trace kernels only read it.
     device_buffer blob_{CL_MEM_READ_WRITE, "the structure blob"};

@@ -1,7 +1,7 @@
 // Incremental updates on Vulkan: the dirty words of a structure blob go to the device in
-// one commit packet (layout/commit_layout.h), written once into a host-visible buffer
+// one commit packet (sync/commit_layout.h), written once into a host-visible buffer
 // (plus one copy command where the device buffer cannot be mapped), and a small compute
-// shader (kernels/commit.h via shaders/commit.glsl) scatters them into the blob. Cost: the
+// shader (sync/commit.h via shaders/commit.glsl) scatters them into the blob. Cost: the
 // changed words plus a small table, whatever the size of the world.
 #pragma once
 #include <algorithm>
@@ -15,7 +15,7 @@
 #include <vulkan/vulkan.h>
 
 #include "voxray/generated/spirv_commit.hpp"
-#include "voxray/structures/word_range.hpp"
+#include "voxray/core/word_range.hpp"
 #include "voxray/sync/commit_packet.hpp"
 #include "voxray/vulkan/buffer.hpp"
 #include "voxray/vulkan/commands.hpp"

@@ -16,6 +16,7 @@
 #include <memory>
 #include <span>
 #include <string>
+#include <string_view>
 #include <type_traits>
 #include <utility>
 #include <vector>
@@ -45,15 +46,27 @@ static_assert(std::is_trivially_copyable_v<ray> && std::is_trivially_copyable_v<
               "rays and hits are copied to and from device memory as bytes");
 static_assert(sizeof(ray) == sizeof(hit), "ray and hit buffers are sized alike");
 
+// The SPIR-V modules of structure kernel `name` (empty spans when it has none).
+constexpr spirv_modules find_modules(std::string_view name) {
+    for (const spirv_modules& m : registered_modules)
+        if (m.name == name) return m;
+    return {name, {}, {}};
+}
+
 template <class Kernel>
 class engine {
+    static constexpr spirv_modules modules_ = find_modules(Kernel::name);
+    static_assert(!modules_.closest.empty() && !modules_.any.empty(),
+                  "this structure has no SPIR-V modules: register it with voxray_add_structure (CMake)");
+
 public:
     explicit engine(vulkan_options options)
         : options_(std::move(options)),
           ctx_(std::make_unique<context>(options_)),
           commands_(std::make_unique<command_stream>(*ctx_)) {
         auto start = std::chrono::steady_clock::now();
-        pipeline_ = std::make_unique<compute_pipeline>(*ctx_, spirv_module<Kernel>::code);
+        closest_ = std::make_unique<compute_pipeline>(*ctx_, modules_.closest);
+        any_ = std::make_unique<compute_pipeline>(*ctx_, modules_.any);
         pipeline_seconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
         auto groups = std::size_t(ctx_->properties().limits.maxComputeWorkGroupCount[0]);
         slice_ = std::min({max_slice_rays, groups * group_size, std::size_t(ctx_->max_buffer() / sizeof(ray)),
@@ -67,7 +80,8 @@ public:
         std::swap(options_, o.options_);
         std::swap(ctx_, o.ctx_);
         std::swap(commands_, o.commands_);
-        std::swap(pipeline_, o.pipeline_);
+        std::swap(closest_, o.closest_);
+        std::swap(any_, o.any_);
         std::swap(committer_, o.committer_);
         std::swap(blob_, o.blob_);
         std::swap(rays_, o.rays_);
@@ -222,8 +236,8 @@ private:
             command_stream::barrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT,
                                     VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_READ_BIT);
         }
-        push_constants pc{blob_.address(), rays_.address(), hits_.address(), std::uint32_t(rays.size()), mode};
-        pipeline_->bind(cmd, pc);
+        push_constants pc{blob_.address(), rays_.address(), hits_.address(), std::uint32_t(rays.size()), 0};
+        (mode == VX_MODE_ANY ? any_ : closest_)->bind(cmd, pc);
         vkCmdDispatch(cmd, std::uint32_t((rays.size() + group_size - 1) / group_size), 1, 1);
         // The host may read the hits only after a barrier that makes shader writes
         // visible to it (directly, or after the copy into the staging buffer).
@@ -246,7 +260,7 @@ private:
     // Declaration order is destruction order reversed: the context goes last.
     std::unique_ptr<context> ctx_;
     std::unique_ptr<command_stream> commands_;
-    std::unique_ptr<compute_pipeline> pipeline_;
+    std::unique_ptr<compute_pipeline> closest_, any_;  // one pipeline per trace mode
     committer committer_;
     buffer blob_, rays_, hits_, rays_staging_, hits_staging_;
     std::size_t slice_ = max_slice_rays;

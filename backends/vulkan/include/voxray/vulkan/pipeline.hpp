@@ -24,12 +24,12 @@ struct push_constants {
     std::uint64_t rays;
     std::uint64_t hits;
     std::uint32_t count;
-    std::uint32_t mode;
+    std::uint32_t unused;  // the trace mode is a constant of each module
 };
 static_assert(std::endian::native == std::endian::little, "addresses are passed as (low, high) word pairs");
 static_assert(sizeof(push_constants) == 32);
 static_assert(offsetof(push_constants, rays) == 8 && offsetof(push_constants, hits) == 16);
-static_assert(offsetof(push_constants, count) == 24 && offsetof(push_constants, mode) == 28);
+static_assert(offsetof(push_constants, count) == 24 && offsetof(push_constants, unused) == 28);
 
 class compute_pipeline {
 public:

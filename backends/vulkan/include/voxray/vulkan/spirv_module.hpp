@@ -1,15 +1,18 @@
-// Which SPIR-V module traces a structure kernel. The build specializes this for every
-// name in VOXRAY_KERNEL_NAMES (generated voxray/generated/vulkan_modules.hpp), so a
-// kernel without a module is a compile-time error, not a run-time surprise.
+// The SPIR-V modules that trace one structure kernel, one per trace mode (the mode is a
+// constant in each). The generated table (voxray/generated/vulkan_modules.hpp) lists one
+// row per voxray_add_structure call; find_modules is evaluated at compile time, so a
+// structure without modules is a compile-time error, not a run-time surprise.
 #pragma once
+#include <cstdint>
+#include <span>
+#include <string_view>
 
 namespace voxray::vulkan_detail {
 
-template <class Kernel>
-struct spirv_module {
-    static_assert(sizeof(Kernel) == 0,
-                  "no SPIR-V module for this kernel: add its name to VOXRAY_KERNEL_NAMES "
-                  "(scripts/cmake/voxray_kernels.cmake)");
+struct spirv_modules {
+    std::string_view name;
+    std::span<const std::uint32_t> closest;
+    std::span<const std::uint32_t> any;
 };
 
 }  // namespace voxray::vulkan_detail

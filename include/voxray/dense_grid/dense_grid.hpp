@@ -1,6 +1,6 @@
 // The reference structure: every voxel of the bounding box has an occupancy bit and a
 // material byte, stored in 16^3 chunks that are allocated only where a voxel is solid.
-// Its traversal (kernels/dense_grid.h) steps one voxel at a time: slow but simple and
+// Its traversal (dense_grid/kernel.h) steps one voxel at a time: slow but simple and
 // exact, which makes it the oracle every other structure and backend is checked against.
 #pragma once
 #include <chrono>
@@ -10,10 +10,13 @@
 
 #include "voxray/core/bits.hpp"
 #include "voxray/core/box.hpp"
-#include "voxray/layout/dense_grid_layout.h"
+#include "voxray/dense_grid/layout.h"
 #include "voxray/model/voxel_model.hpp"
-#include "voxray/kernels/kernel_ids.hpp"
-#include "voxray/structures/blob.hpp"
+#include "voxray/core/blob.hpp"
+
+#define VOXRAY_KERNEL_NAME dense_grid
+#define VOXRAY_KERNEL_FILE "voxray/dense_grid/kernel.h"
+#include "voxray/kernels/cpu_kernel.inc"
 
 namespace voxray {
 
@@ -43,8 +46,8 @@ public:
         std::vector<std::uint32_t> table(table_entries, VX_DG_EMPTY_CHUNK);
         std::uint32_t chunk_count = 0;
         model.for_each_voxel([&](glm::ivec3 p, std::uint8_t) {
-            auto c = glm::uvec3(p - bounds_.min) / 16u;
-            auto& slot = table[c.x + std::uint64_t(c.y) * chunks.x + std::uint64_t(c.z) * chunks.x * chunks.y];
+            auto q = glm::uvec3(p - bounds_.min);
+            auto& slot = table[VX_DG_CHUNK_SLOT(std::uint64_t(q.x), q.y, q.z, chunks.x, std::uint64_t(chunks.x) * chunks.y)];
             if (slot == VX_DG_EMPTY_CHUNK) slot = chunk_count++;
         });
         std::uint64_t data = header + table_entries;
@@ -66,12 +69,12 @@ public:
 
         model.for_each_voxel([&](glm::ivec3 p, std::uint8_t value) {
             auto q = glm::uvec3(p - bounds_.min);
-            auto c = q / 16u;
-            std::uint32_t entry = table[c.x + std::uint64_t(c.y) * chunks.x + std::uint64_t(c.z) * chunks.x * chunks.y];
-            std::uint32_t local = (q.x & 15u) | ((q.y & 15u) << 4) | ((q.z & 15u) << 8);
+            std::uint32_t entry =
+                table[VX_DG_CHUNK_SLOT(std::uint64_t(q.x), q.y, q.z, chunks.x, std::uint64_t(chunks.x) * chunks.y)];
+            std::uint32_t local = VX_DG_LOCAL(q.x, q.y, q.z);
             std::uint32_t* record = words_.data() + data + std::uint64_t(entry) * VX_DG_CHUNK_WORDS;
             bits::set(record, local);
-            record[VX_DG_OCCUPANCY_WORDS + (local >> 2)] |= std::uint32_t(value) << ((local & 3) * 8);
+            record[VX_DG_MATERIAL_WORD(local)] |= std::uint32_t(value) << VX_DG_MATERIAL_SHIFT(local);
         });
         voxel_count_ = model.voxel_count();
         build_seconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

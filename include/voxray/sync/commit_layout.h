@@ -1,6 +1,6 @@
 /* The commit packet: what an incremental device update sends in ONE transfer. The host
  * (sync/commit_packet.hpp) packs the changed words of a structure blob behind a small
- * table saying where each run of words belongs; the commit kernel (kernels/commit.h)
+ * table saying where each run of words belongs; the commit kernel (sync/commit.h)
  * then scatters them into the device copy of the blob. One transfer plus one small
  * kernel replaces one transfer per dirty range: per-transfer overhead, not bandwidth,
  * is what makes many small copies slow.

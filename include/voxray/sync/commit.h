@@ -1,5 +1,5 @@
 /* The commit kernel, written once: copies the words of a commit packet
- * (layout/commit_layout.h) into the device copy of a structure blob. Compiled as OpenCL C
+ * (sync/commit_layout.h) into the device copy of a structure blob. Compiled as OpenCL C
  * 1.2 (backends/opencl/kernels/entry.cl includes it), as GLSL (backends/vulkan/shaders/
  * commit.glsl) and as C++ (tests run it against the host packer).
  *
@@ -16,7 +16,7 @@
  *   `readonly` in backends/vulkan/shaders/preamble.glsl; C++: std::uint32_t*.
  */
 #include "voxray/kernels/prelude.h"
-#include "voxray/layout/commit_layout.h"
+#include "voxray/sync/commit_layout.h"
 
 #if defined(VX_DIALECT_OPENCL)
 #define VX_BLOB_RW __global uint*

@@ -1,5 +1,5 @@
-/* Byte layout of the dense reference grid, shared by the host builder
- * (structures/dense_grid.hpp asserts against it) and every kernel dialect.
+/* Byte layout of the dense reference grid and its address arithmetic, shared by the host
+ * builder (dense_grid/dense_grid.hpp) and the kernel (dense_grid/kernel.h) in every dialect.
  * Everything is 32-bit words; offsets are in words from the start of the blob.
  *
  *  blob
@@ -41,5 +41,17 @@
 #define VX_DG_MATERIAL_WORDS 1024   /* 4096 bytes */
 #define VX_DG_CHUNK_WORDS 1152
 #define VX_DG_EMPTY_CHUNK 0xFFFFFFFFu
+
+/* Address arithmetic. Macros, so that one definition serves host integers, GPU integers
+ * and SIMD lane vectors alike. (x, y, z) are voxel coordinates relative to the grid's
+ * origin; chunks_x and chunks_xy = chunks_x * chunks_y come from the header. */
+#define VX_DG_LOCAL(x, y, z) \
+    (((x) & VX_DG_CHUNK_MASK) | (((y) & VX_DG_CHUNK_MASK) << 4) | (((z) & VX_DG_CHUNK_MASK) << 8))
+#define VX_DG_CHUNK_SLOT(x, y, z, chunks_x, chunks_xy) \
+    (((x) >> VX_DG_CHUNK_BITS) + ((y) >> VX_DG_CHUNK_BITS) * (chunks_x) + ((z) >> VX_DG_CHUNK_BITS) * (chunks_xy))
+/* Word (within a chunk record) of local voxel l's occupancy bit and of its material byte. */
+#define VX_DG_OCCUPANCY_WORD(l) ((l) >> 5)
+#define VX_DG_MATERIAL_WORD(l) (VX_DG_OCCUPANCY_WORDS + ((l) >> 2))
+#define VX_DG_MATERIAL_SHIFT(l) (((l) & 3u) * 8u)
 
 #endif

@@ -40,6 +40,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdint>
+#include <string_view>
 #include <limits>
 #include <span>
 #include <vector>
@@ -58,6 +59,8 @@ namespace voxray::embree {
 
 class quad_scene {
 public:
+    static constexpr std::string_view name = "embree-quads";
+    static constexpr std::string_view library = "embree";
     explicit quad_scene(const voxel_model& model, device dev = device()) : dev_(std::move(dev)) {
         auto start = std::chrono::steady_clock::now();
         bounds_ = model.bounds();

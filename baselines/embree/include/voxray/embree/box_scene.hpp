@@ -44,6 +44,7 @@
 #pragma once
 #include <chrono>
 #include <cstdint>
+#include <string_view>
 #include <limits>
 #include <span>
 #include <vector>
@@ -64,6 +65,8 @@ namespace voxray::embree {
 
 class box_scene {
 public:
+    static constexpr std::string_view name = "embree-boxes";
+    static constexpr std::string_view library = "embree";
     explicit box_scene(const voxel_model& model, device dev = device()) : dev_(std::move(dev)) {
         auto start = std::chrono::steady_clock::now();
         bounds_ = model.bounds();

@@ -1,4 +1,5 @@
-/* Byte layout of the brickmap (structures: brickmap/brickmap.hpp; kernel: kernels/brickmap.h).
+/* Byte layout of the brickmap and its address arithmetic, shared by the host type
+ * (brickmap/brickmap.hpp, top_grid.hpp, brick_codec.hpp) and the kernel (brickmap/kernel.h).
  * Everything is 32-bit words; offsets are in words from the start of the blob.
  *
  *  blob
@@ -58,5 +59,18 @@
 
 #define VX_BM_CELL_EMPTY 0u
 #define VX_BM_CELL_IS_BRICK 1u       /* bit 0 */
+
+/* Address arithmetic. Macros, so that one definition serves host integers, GPU integers
+ * and SIMD lane vectors alike. (cx, cy, cz) are top cell coordinates. */
+#define VX_BM_PAGE_SLOT(cx, cy, cz, pages_x, pages_xy) \
+    (((cx) >> VX_BM_PAGE_BITS) + ((cy) >> VX_BM_PAGE_BITS) * (pages_x) + ((cz) >> VX_BM_PAGE_BITS) * (pages_xy))
+#define VX_BM_PAGE_CELL(cx, cy, cz) \
+    (((cx) & VX_BM_PAGE_MASK) | (((cy) & VX_BM_PAGE_MASK) << 4) | (((cz) & VX_BM_PAGE_MASK) << 8))
+/* Index of a voxel inside its brick from its in-brick coordinates (b = log2 edge). */
+#define VX_BM_VOXEL_INDEX(lx, ly, lz, b) ((lx) | ((ly) << (b)) | ((lz) << (2 * (b))))
+/* Top cell values: a brick index, or a solid cell's payload; either back out of a cell. */
+#define VX_BM_BRICK_CELL(index) (((index) << 1) | VX_BM_CELL_IS_BRICK)
+#define VX_BM_SOLID_CELL(payload) ((payload) << 1)
+#define VX_BM_CELL_VALUE(cell) ((cell) >> 1)
 
 #endif

@@ -18,7 +18,7 @@
 
 #include <glm/vec3.hpp>
 
-#include "voxray/layout/ray_hit_layout.h"
+#include "voxray/core/ray_hit_layout.h"
 
 namespace voxray::embree {
 

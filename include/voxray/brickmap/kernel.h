@@ -1,4 +1,4 @@
-/* Traversal of the brickmap (layout/brickmap_layout.h): a nested DDA written as ONE walk
+/* Traversal of the brickmap (brickmap/layout.h): a nested DDA written as ONE walk
  * whose cell size changes. At top level a cell is a whole top cell (brick edge wide,
  * aligned); at a non-empty one the walk descends and steps voxel by voxel; when it leaves
  * that top cell it ascends again. All cell boundaries are voxel planes, so every crossing
@@ -7,6 +7,7 @@
  * one move per step whatever level each lane is at. The hit voxel, t and face of a solid
  * cell are those of the voxel the ray enters: no "cell entry" shortcut.
  * Needs prelude.h, ray.h, dda.h. Included once per lane set; no include guard on purpose. */
+#include "voxray/brickmap/layout.h"
 VX_STRUCT(vx_brickmap)
     int ox, oy, oz;           /* world position of voxel (0,0,0) */
     int cells_x, cells_y, cells_z;
@@ -24,7 +25,7 @@ VX_STRUCT(vx_bm_state)
     vx_u32 cell;         /* the top cell's value while walking its voxels; 0 at top level */
 VX_END_STRUCT(vx_bm_state)
 
-VX_FN vx_brickmap vx_bm_load(VX_BLOB blob) {
+VX_FN vx_brickmap vx_brickmap_load(VX_BLOB blob) {
     vx_brickmap g;
     g.ox = vx_u2i(vx_load(blob, VX_BM_HEADER_ORIGIN + 0));
     g.oy = vx_u2i(vx_load(blob, VX_BM_HEADER_ORIGIN + 1));
@@ -48,28 +49,25 @@ VX_FN vx_brickmap vx_bm_load(VX_BLOB blob) {
 
 /* Value of top cell c (0 = empty) for lanes in `live`, 0 elsewhere. */
 VX_FN vx_u32 vx_bm_cell(VX_BLOB blob, vx_brickmap g, vx_i32 cx, vx_i32 cy, vx_i32 cz, vx_mask live) {
-    vx_u32 slot = vx_i2u(cx >> VX_BM_PAGE_BITS) + vx_i2u(cy >> VX_BM_PAGE_BITS) * g.pages_x +
-                  vx_i2u(cz >> VX_BM_PAGE_BITS) * g.pages_xy;
+    vx_u32 slot = VX_BM_PAGE_SLOT(vx_i2u(cx), vx_i2u(cy), vx_i2u(cz), g.pages_x, g.pages_xy);
     vx_u32 page = vx_gather(blob, vx_sel(live, g.page_table + slot, 0u));
     vx_mask present = live && page != VX_BM_EMPTY_PAGE;
-    vx_u32 index = vx_i2u((cx & VX_BM_PAGE_MASK) | ((cy & VX_BM_PAGE_MASK) << 4) | ((cz & VX_BM_PAGE_MASK) << 8));
-    vx_u32 value = vx_sel(present, 0u, 0u);
-    if (vx_any(present)) value = vx_gather(blob, vx_sel(present, g.pages + page * VX_BM_PAGE_WORDS + index, 0u));
-    return vx_sel(present, value, 0u);
+    vx_u32 index = vx_i2u(VX_BM_PAGE_CELL(cx, cy, cz));
+    return vx_gather_masked(blob, present, g.pages + page * VX_BM_PAGE_WORDS + index);
 }
 
 /* Index of voxel (x, y, z) inside its brick: lx | ly << b | lz << 2b. */
 VX_FN vx_u32 vx_bm_voxel_bit(vx_brickmap g, vx_i32 x, vx_i32 y, vx_i32 z) {
     int m = (1 << g.brick_bits) - 1;
-    return vx_i2u((x & m) | ((y & m) << g.brick_bits) | ((z & m) << (2 * g.brick_bits)));
+    return vx_i2u(VX_BM_VOXEL_INDEX(x & m, y & m, z & m, g.brick_bits));
 }
 
 /* Word offset of the brick a brick cell points to (lanes without a brick: 0). */
 VX_FN vx_u32 vx_bm_brick(vx_brickmap g, vx_u32 cell) {
-    return vx_sel((cell & VX_BM_CELL_IS_BRICK) != 0u, g.bricks + (cell >> 1u) * g.brick_words, 0u);
+    return vx_sel((cell & VX_BM_CELL_IS_BRICK) != 0u, g.bricks + VX_BM_CELL_VALUE(cell) * g.brick_words, 0u);
 }
 
-VX_FN vx_bm_state vx_bm_begin(vx_brickmap g, vx_ray r) {
+VX_FN vx_bm_state vx_brickmap_begin(vx_brickmap g, vx_ray r) {
     vx_bm_state s;
     int edge = 1 << g.brick_bits;
     /* Start with the grid DDA over top cells (in scaled units, which are exact), then
@@ -81,32 +79,14 @@ VX_FN vx_bm_state vx_bm_begin(vx_brickmap g, vx_ray r) {
     s.w.ix = s.w.ix * to_inverse; s.w.iy = s.w.iy * to_inverse; s.w.iz = s.w.iz * to_inverse;
     s.w.cx = s.w.cx << g.brick_bits; s.w.cy = s.w.cy << g.brick_bits; s.w.cz = s.w.cz << g.brick_bits;
     s.dx = r.dx; s.dy = r.dy; s.dz = r.dz;
-    s.cell = vx_sel(s.w.status == VX_STATUS_ACTIVE, 0u, 0u);
+    s.cell = vx_u32_splat(0u);
     return s;
 }
 
 /* Descends into the top cell the walk is in (lanes in m; its value is `cell`): the walk
- * continues at the voxel where the ray entered it. On the axis the cell was entered
- * through that is the first slab; on the others, the floor of the entry point, clamped. */
+ * continues at the voxel where the ray entered it (vx_dda_reenter). */
 VX_FN vx_bm_state vx_bm_descend(vx_bm_state s, vx_brickmap g, vx_u32 cell, vx_mask m) {
-    int last = (1 << g.brick_bits) - 1;
-    vx_f32 t = vx_sel(m, s.w.t, 0.0f);
-    vx_f32 px = vx_sel(m, s.w.ox + s.dx * t, 0.0f) - vx_i2f(s.w.cx);
-    vx_f32 py = vx_sel(m, s.w.oy + s.dy * t, 0.0f) - vx_i2f(s.w.cy);
-    vx_f32 pz = vx_sel(m, s.w.oz + s.dz * t, 0.0f) - vx_i2f(s.w.cz);
-    vx_i32 lx = vx_f2i(vx_floor(vx_fmin(vx_fmax(px, 0.0f), vx_i2f(last))));
-    vx_i32 ly = vx_f2i(vx_floor(vx_fmin(vx_fmax(py, 0.0f), vx_i2f(last))));
-    vx_i32 lz = vx_f2i(vx_floor(vx_fmin(vx_fmax(pz, 0.0f), vx_i2f(last))));
-    vx_u32 f = s.w.face;
-    lx = vx_sel(f == VX_FACE_NEG_X, 0, vx_sel(f == VX_FACE_POS_X, last, lx));
-    ly = vx_sel(f == VX_FACE_NEG_Y, 0, vx_sel(f == VX_FACE_POS_Y, last, ly));
-    lz = vx_sel(f == VX_FACE_NEG_Z, 0, vx_sel(f == VX_FACE_POS_Z, last, lz));
-    s.w.cx = vx_sel(m, s.w.cx + lx, s.w.cx);
-    s.w.cy = vx_sel(m, s.w.cy + ly, s.w.cy);
-    s.w.cz = vx_sel(m, s.w.cz + lz, s.w.cz);
-    s.w.nx = vx_sel(m, vx_dda_exit_t_sized(s.w.cx, vx_sel(m, 1, 1), s.w.sx, s.w.ox, s.w.ix), s.w.nx);
-    s.w.ny = vx_sel(m, vx_dda_exit_t_sized(s.w.cy, vx_sel(m, 1, 1), s.w.sy, s.w.oy, s.w.iy), s.w.ny);
-    s.w.nz = vx_sel(m, vx_dda_exit_t_sized(s.w.cz, vx_sel(m, 1, 1), s.w.sz, s.w.oz, s.w.iz), s.w.nz);
+    s.w = vx_dda_reenter(s.w, s.dx, s.dy, s.dz, vx_i32_splat(1 << g.brick_bits), vx_i32_splat(1), m);
     s.cell = vx_sel(m, cell, s.cell);
     return s;
 }
@@ -120,7 +100,7 @@ VX_FN vx_bm_state vx_bm_ascend(vx_bm_state s, vx_brickmap g, vx_mask m) {
     s.w.cx = vx_sel(m, tx << g.brick_bits, s.w.cx);
     s.w.cy = vx_sel(m, ty << g.brick_bits, s.w.cy);
     s.w.cz = vx_sel(m, tz << g.brick_bits, s.w.cz);
-    vx_i32 size = vx_sel(m, edge, edge);
+    vx_i32 size = vx_i32_splat(edge);
     s.w.nx = vx_sel(m, vx_dda_exit_t_sized(s.w.cx, size, s.w.sx, s.w.ox, s.w.ix), s.w.nx);
     s.w.ny = vx_sel(m, vx_dda_exit_t_sized(s.w.cy, size, s.w.sy, s.w.oy, s.w.iy), s.w.ny);
     s.w.nz = vx_sel(m, vx_dda_exit_t_sized(s.w.cz, size, s.w.sz, s.w.oz, s.w.iz), s.w.nz);
@@ -133,7 +113,7 @@ VX_FN vx_bm_state vx_bm_ascend(vx_bm_state s, vx_brickmap g, vx_mask m) {
  * table) and descend into it if it is not empty; then, at voxel level (just descended
  * too, so a ray that hits the voxel it enters a cell by needs no extra step), test the
  * voxel; then hit or move on, ascending when a voxel walk leaves its top cell. */
-VX_FN vx_bm_state vx_bm_step(VX_BLOB blob, vx_brickmap g, vx_bm_state s) {
+VX_FN vx_bm_state vx_brickmap_step(VX_BLOB blob, vx_brickmap g, vx_bm_state s) {
     int edge = 1 << g.brick_bits;
     vx_mask live = s.w.status == VX_STATUS_ACTIVE;
     vx_mask at_top = live && s.cell == 0u;
@@ -148,8 +128,7 @@ VX_FN vx_bm_state vx_bm_step(VX_BLOB blob, vx_brickmap g, vx_bm_state s) {
     vx_u32 brick = vx_bm_brick(g, s.cell);
     vx_mask in_brick = at_voxel && brick != 0u;
     vx_u32 bit = vx_bm_voxel_bit(g, s.w.cx, s.w.cy, s.w.cz);
-    vx_u32 word = vx_sel(in_brick, 0u, 0u);
-    if (vx_any(in_brick)) word = vx_gather(blob, vx_sel(in_brick, brick + (bit >> 5u), 0u));
+    vx_u32 word = vx_gather_masked(blob, in_brick, brick + (bit >> 5u));
     vx_mask solid = at_voxel && (!in_brick || ((word >> (bit & 31u)) & 1u) != 0u);
     s.w.status = vx_sel(solid, VX_STATUS_HIT, s.w.status);
 
@@ -166,15 +145,21 @@ VX_FN vx_bm_state vx_bm_step(VX_BLOB blob, vx_brickmap g, vx_bm_state s) {
     return s;
 }
 
-VX_FN vx_hit vx_bm_finish(VX_BLOB blob, vx_brickmap g, vx_bm_state s) {
+VX_FN vx_u32 vx_brickmap_status(vx_bm_state s) { return s.w.status; }
+
+/* The hit record; any-hit (a constant `mode`) reads no payload. */
+VX_FN vx_hit vx_brickmap_finish(VX_BLOB blob, vx_brickmap g, vx_bm_state s, uint mode) {
     vx_hit h;
     vx_mask is_hit = s.w.status == VX_STATUS_HIT;
-    vx_u32 brick = vx_bm_brick(g, vx_sel(is_hit, s.cell, 0u));
-    vx_mask in_brick = is_hit && brick != 0u;
-    vx_u32 bit = vx_bm_voxel_bit(g, s.w.cx, s.w.cy, s.w.cz);
-    vx_u32 word = vx_gather(blob, vx_sel(in_brick, brick + g.occupancy_words + (bit >> g.values_per_word_bits), 0u));
-    vx_u32 shift = (bit & ((1u << g.values_per_word_bits) - 1u)) * g.payload_bits;
-    vx_u32 payload = vx_sel(in_brick, (word >> shift) & g.payload_mask, s.cell >> 1u);
+    vx_u32 payload = vx_u32_splat(0u);
+    if (mode == VX_MODE_CLOSEST) {
+        vx_u32 brick = vx_bm_brick(g, vx_sel(is_hit, s.cell, 0u));
+        vx_mask in_brick = is_hit && brick != 0u;
+        vx_u32 bit = vx_bm_voxel_bit(g, s.w.cx, s.w.cy, s.w.cz);
+        vx_u32 word = vx_gather_masked(blob, in_brick, brick + g.occupancy_words + (bit >> g.values_per_word_bits));
+        vx_u32 shift = (bit & ((1u << g.values_per_word_bits) - 1u)) * g.payload_bits;
+        payload = vx_sel(in_brick, (word >> shift) & g.payload_mask, VX_BM_CELL_VALUE(s.cell));
+    }
     h.t = vx_sel(is_hit, s.w.t, VX_INF);
     h.x = vx_sel(is_hit, s.w.cx + g.ox, 0);
     h.y = vx_sel(is_hit, s.w.cy + g.oy, 0);
@@ -186,22 +171,10 @@ VX_FN vx_hit vx_bm_finish(VX_BLOB blob, vx_brickmap g, vx_bm_state s) {
     return h;
 }
 
-/* Per lane: a where m is set, else b (the CPU stream's lane refill). */
-VX_FN vx_bm_state vx_bm_select(vx_mask m, vx_bm_state a, vx_bm_state b) {
-    vx_bm_state s;
-    s.w = vx_dda_select(m, a.w, b.w);
-    s.dx = vx_sel(m, a.dx, b.dx);
-    s.dy = vx_sel(m, a.dy, b.dy);
-    s.dz = vx_sel(m, a.dz, b.dz);
-    s.cell = vx_sel(m, a.cell, b.cell);
-    return s;
-}
-
-/* Closest hit; the first solid voxel is also a valid any-hit answer. */
+/* Closest hit, or any hit (the first solid voxel serves both; any-hit skips the payload). */
 VX_FN vx_hit vx_brickmap_trace(VX_BLOB blob, vx_ray r, uint mode) {
-    VX_UNUSED(mode);
-    vx_brickmap g = vx_bm_load(blob);
-    vx_bm_state s = vx_bm_begin(g, r);
-    while (vx_any(s.w.status == VX_STATUS_ACTIVE)) s = vx_bm_step(blob, g, s);
-    return vx_bm_finish(blob, g, s);
+    vx_brickmap g = vx_brickmap_load(blob);
+    vx_bm_state s = vx_brickmap_begin(g, r);
+    while (vx_any(s.w.status == VX_STATUS_ACTIVE)) s = vx_brickmap_step(blob, g, s);
+    return vx_brickmap_finish(blob, g, s, mode);
 }
