@@ -5,7 +5,9 @@
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
+#include <cstdlib>
 #include <fstream>
+#include <string>
 
 #include "args.hpp"
 #include "edits.hpp"
@@ -19,6 +21,19 @@ namespace voxray::tool {
 
 
 namespace {
+
+// The CPU clock in Hz as the kernel reports it (the largest "cpu MHz" in /proc/cpuinfo),
+// 0 when unknown. Cycles per ray-step = threads x clock / (rays/s x steps/ray).
+double cpu_clock_hz() {
+    std::ifstream in("/proc/cpuinfo");
+    double best = 0;
+    for (std::string line; std::getline(in, line);)
+        if (line.rfind("cpu MHz", 0) == 0) {
+            auto colon = line.find(':');
+            if (colon != std::string::npos) best = std::max(best, std::atof(line.c_str() + colon + 1) * 1e6);
+        }
+    return best;
+}
 
 // Rays of the requested kind; secondary and shadow rays start from the reference's hits.
 std::vector<ray> make_rays(const std::string& kind, const voxel_model& model, traceable& reference, int w, int h) {
@@ -180,6 +195,14 @@ int run_bench(int argc, char** argv) {
     std::printf("bytes %zu (%.2f per voxel)  build %.3f s  steps/ray %.2f\n", structure->bytes(),
                 double(structure->bytes()) / double(std::max<std::uint64_t>(1, model.voxel_count())), structure->build_seconds(),
                 steps);
+    // A CPU backend's cost per step of one ray, from the measured clock (CPU backends with
+    // steps only: a device's threads are not this machine's cores).
+    double clock = cpu_clock_hz();
+    unsigned threads = engine->cpu_threads();
+    double cycles_per_step = threads > 0 && clock > 0 && steps > 0 ? threads * clock / (median * 1e6 * steps) : 0.0;
+    if (cycles_per_step > 0)
+        std::printf("cycles/ray-step %.1f (%u threads, %.2f GHz, %u lanes)\n", cycles_per_step, threads, clock * 1e-9,
+                    engine->simd_width());
     std::printf("validated %zu rays x %d runs against dense/cpu: %llu mismatches, %llu ties\n", rays.size(), runs,
                 (unsigned long long)mismatches, (unsigned long long)ties);
     if (a.has("json")) {
@@ -189,6 +212,8 @@ int run_bench(int argc, char** argv) {
           << ", \"height\": " << height << ", \"runs\": " << runs << ", \"ray_count\": " << rays.size()
           << ", \"voxels\": " << model.voxel_count() << ", \"bytes\": " << structure->bytes()
           << ", \"build_seconds\": " << structure->build_seconds() << ", \"steps_per_ray\": " << steps
+          << ", \"cycles_per_ray_step\": " << cycles_per_step << ", \"threads\": " << threads
+          << ", \"simd_width\": " << engine->simd_width() << ", \"clock_hz\": " << clock
           << ", \"mrays_median\": " << median << ", \"mrays_min\": " << lo << ", \"mrays_max\": " << hi
           << ", \"mrays_runs\": [";
         for (std::size_t i = 0; i < mrays.size(); ++i) j << (i ? ", " : "") << mrays[i];

@@ -53,6 +53,9 @@ public:
     // edited model and sent whole.
     virtual void after_edits(const voxel_model& edited) = 0;
     virtual std::uint64_t bytes_uploaded_last_update() const { return 0; }
+    // CPU threads tracing (0: a device does) and rays per lane group (1: scalar).
+    virtual unsigned cpu_threads() const { return 0; }
+    virtual unsigned simd_width() const { return 1; }
 };
 
 // One built structure or baseline, shared by every backend that traces it.
@@ -67,7 +70,7 @@ public:
     virtual std::unique_ptr<traceable> trace_on(const std::string& backend) = 0;
     // Edits the structure in place (editable ones only) and keeps the dirty ranges for
     // its traceables' after_edits().
-    virtual void apply_edits(std::span<const region_edit>, unsigned threads = 1) {
+    virtual void apply_edits(std::span<const region_edit>, unsigned /* threads */ = 1) {
         fail("structure ", name(), " is not editable");
     }
 };
@@ -146,6 +149,14 @@ public:
         }
     }
     std::uint64_t bytes_uploaded_last_update() const override { return tracer_.bytes_uploaded_last_update(); }
+    unsigned cpu_threads() const override {
+        if constexpr (requires { tracer_.engine().threads(); }) return tracer_.engine().threads();
+        else return 0;
+    }
+    unsigned simd_width() const override {
+        if constexpr (requires { tracer_.engine().simd_width(); }) return tracer_.engine().simd_width();
+        else return 1;
+    }
 
 private:
     std::shared_ptr<structure_slot<Structure>> slot_;

@@ -1,6 +1,7 @@
-// The portable kernels compiled as C++, twice: once with scalar lanes (the reference
-// path, `cpu-scalar`) and once with SIMD lanes (GCC vector types, one ray per lane).
-// Both come from the very same kernel files; only the lane types and helpers differ.
+// The portable kernels compiled as C++, three times: with scalar lanes (the reference
+// path, `cpu-scalar`), and with SIMD lanes (GCC vector types, one ray per lane) 8 wide
+// (AVX2) and 16 wide (AVX-512, picked at run time where the CPU has it). All come from
+// the very same kernel files; only the lane types and helpers differ.
 //
 // This header sets up both lane namespaces with the shared dialect (ray, DDA). Each
 // structure's kernel joins them through kernels/cpu_kernel.inc, which its host header
@@ -19,12 +20,6 @@
 
 namespace voxray::kernels {
 
-// Lanes per SIMD packet: 16 with AVX-512, else 8 (AVX2 and x86-64-v3).
-#if defined(__AVX512F__)
-inline constexpr int simd_width = 16;
-#else
-inline constexpr int simd_width = 8;
-#endif
 
 namespace scalar {
 using uint = std::uint32_t;
@@ -56,106 +51,56 @@ inline float vx_fmin(float a, float b) { return a < b ? a : b; }
 inline float vx_fmax(float a, float b) { return a > b ? a : b; }
 inline bool vx_any(bool m) { return m; }
 template <class State>
-inline State vx_select_state(bool m, const State& a, const State& b) { return m ? a : b; }
+inline void vx_select_state_into(bool m, const State& a, State& into) {
+    if (m) into = a;
+}
 
 #include "voxray/kernels/ray.h"
 #include "voxray/kernels/dda.h"
 }  // namespace scalar
 
-namespace simd {
-using uint = std::uint32_t;
-inline constexpr int width = simd_width;
-template <class Kernel>
-struct kernel_lanes;
-typedef float vx_f32 __attribute__((vector_size(4 * simd_width)));
-typedef std::int32_t vx_i32 __attribute__((vector_size(4 * simd_width)));
-typedef std::uint32_t vx_u32 __attribute__((vector_size(4 * simd_width)));
-using vx_mask = vx_i32;  // all ones or zero per lane, as vector comparisons produce
+// Each SIMD lane set is compiled for its own ISA whatever the build flags (GCC: a target
+// pragma; clang: a target attribute applied to every function), and runs only where
+// cpu_has_avx2() / cpu_has_avx512() say the CPU has it: one binary uses AVX-512 where it
+// exists and AVX2 elsewhere, as Embree does.
+#if defined(__clang__)
+#define VOXRAY_TARGET_BEGIN_(isa) _Pragma(VOXRAY_TARGET_STR_(clang attribute push(__attribute__((target(isa))), apply_to = function)))
+#define VOXRAY_TARGET_END_ _Pragma("clang attribute pop")
+#else
+#define VOXRAY_TARGET_BEGIN_(isa) _Pragma("GCC push_options") _Pragma(VOXRAY_TARGET_STR_(GCC target(isa)))
+#define VOXRAY_TARGET_END_ _Pragma("GCC pop_options")
+#endif
+#define VOXRAY_TARGET_STR_(x) #x
+#define VOXRAY_AVX2_BEGIN VOXRAY_TARGET_BEGIN_("avx2")
+#define VOXRAY_AVX2_END VOXRAY_TARGET_END_
+#define VOXRAY_AVX512_BEGIN VOXRAY_TARGET_BEGIN_("avx512f,avx512dq,avx512bw,avx512vl")
+#define VOXRAY_AVX512_END VOXRAY_TARGET_END_
 
-inline std::uint32_t vx_load(const std::uint32_t* b, std::uint32_t i) { return b[i]; }
-// Per-lane load. Indices are words; blobs are limited to 2^31 words (8 GiB) for this.
-inline vx_u32 vx_gather(const std::uint32_t* b, vx_u32 i) {
-#if defined(__AVX512F__) && !defined(VOXRAY_SCALAR_GATHER)
-    return (vx_u32)_mm512_i32gather_epi32((__m512i)i, reinterpret_cast<const int*>(b), 4);
-#elif defined(__AVX2__) && !defined(VOXRAY_SCALAR_GATHER)
-    return (vx_u32)_mm256_i32gather_epi32(reinterpret_cast<const int*>(b), (__m256i)i, 4);
-#else
-    vx_u32 r;
-    for (int k = 0; k < width; ++k) r[k] = b[i[k]];
-    return r;
-#endif
+inline bool cpu_has_avx2() {
+    static const bool has = __builtin_cpu_supports("avx2");
+    return has;
 }
-inline bool vx_any(vx_i32 m) {
-#if defined(__AVX512F__)
-    return _mm512_test_epi32_mask((__m512i)m, (__m512i)m) != 0;
-#elif defined(__AVX__)
-    return _mm256_movemask_ps((__m256)m) != 0;
-#else
-    for (int k = 0; k < width; ++k)
-        if (m[k]) return true;
-    return false;
-#endif
-}
-// b[i] in the lanes of m, 0 in the others, which load nothing (no load at all when m is
-// empty): the pattern of every lookup only some lanes need.
-inline vx_u32 vx_gather_masked(const std::uint32_t* b, vx_mask m, vx_u32 i) {
-    if (!vx_any(m)) return vx_u32{};
-#if defined(__AVX512F__) && !defined(VOXRAY_SCALAR_GATHER)
-    __mmask16 k = _mm512_test_epi32_mask((__m512i)m, (__m512i)m);
-    return (vx_u32)_mm512_mask_i32gather_epi32(_mm512_setzero_si512(), k, (__m512i)i, reinterpret_cast<const int*>(b), 4);
-#elif defined(__AVX2__) && !defined(VOXRAY_SCALAR_GATHER)
-    return (vx_u32)_mm256_mask_i32gather_epi32(_mm256_setzero_si256(), reinterpret_cast<const int*>(b), (__m256i)i,
-                                               (__m256i)m, 4);
-#else
-    vx_u32 r;
-    for (int k = 0; k < width; ++k) r[k] = m[k] ? b[i[k]] : 0u;
-    return r;
-#endif
-}
-inline float vx_i2f(std::int32_t x) { return float(x); }
-inline vx_f32 vx_i2f(vx_i32 x) { return __builtin_convertvector(x, vx_f32); }
-inline vx_i32 vx_f2i(vx_f32 x) { return __builtin_convertvector(x, vx_i32); }
-inline std::uint32_t vx_i2u(std::int32_t x) { return std::uint32_t(x); }
-inline vx_u32 vx_i2u(vx_i32 x) { return (vx_u32)x; }
-inline std::int32_t vx_u2i(std::uint32_t x) { return std::int32_t(x); }
-inline vx_i32 vx_u2i(vx_u32 x) { return (vx_i32)x; }
-inline vx_u32 vx_f_bits(vx_f32 x) { return (vx_u32)x; }
-inline vx_f32 vx_f32_splat(float x) { return vx_f32{} + x; }
-inline vx_i32 vx_i32_splat(std::int32_t x) { return vx_i32{} + x; }
-inline vx_u32 vx_u32_splat(std::uint32_t x) { return vx_u32{} + x; }
-inline vx_f32 vx_floor(vx_f32 x) {
-#if defined(__AVX512F__)
-    return (vx_f32)_mm512_roundscale_ps((__m512)x, _MM_FROUND_TO_NEG_INF | _MM_FROUND_NO_EXC);
-#elif defined(__AVX__)
-    return (vx_f32)_mm256_floor_ps((__m256)x);
-#else
-    vx_f32 r;
-    for (int k = 0; k < width; ++k) r[k] = std::floor(x[k]);
-    return r;
-#endif
-}
-inline vx_f32 vx_fmin(vx_f32 a, vx_f32 b) { return a < b ? a : b; }
-inline vx_f32 vx_fmax(vx_f32 a, vx_f32 b) { return a > b ? a : b; }
-inline vx_f32 vx_fmin(vx_f32 a, float b) { return a < b ? a : b; }
-inline vx_f32 vx_fmax(vx_f32 a, float b) { return a > b ? a : b; }
-
-// Per lane: a where m is set, else b, for a whole kernel state. Kernel states hold
-// per-lane fields only (lane vectors of 32-bit values, or arrays of them), so a state
-// is a row of lane vectors and one blend per row merges it: no per-structure select.
-template <class State>
-inline State vx_select_state(vx_mask m, const State& a, const State& b) {
-    static_assert(std::is_trivially_copyable_v<State> && sizeof(State) % sizeof(vx_u32) == 0 &&
-                      alignof(State) == alignof(vx_u32),
-                  "a kernel state must consist of lane vectors only (no uniform fields)");
-    using rows = std::array<vx_u32, sizeof(State) / sizeof(vx_u32)>;
-    rows ra = std::bit_cast<rows>(a), rb = std::bit_cast<rows>(b), out;
-    for (std::size_t i = 0; i < out.size(); ++i) out[i] = m ? ra[i] : rb[i];
-    return std::bit_cast<State>(out);
+inline bool cpu_has_avx512() {
+    static const bool has = __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512dq") &&
+                            __builtin_cpu_supports("avx512bw") && __builtin_cpu_supports("avx512vl");
+    return has;
 }
 
-#include "voxray/kernels/ray.h"
-#include "voxray/kernels/dda.h"
-}  // namespace simd
+VOXRAY_AVX2_BEGIN
+#define VX_SIMD_WIDTH 8
+namespace simd8 {
+#include "voxray/kernels/cpu_simd_lanes.inc"
+}  // namespace simd8
+#undef VX_SIMD_WIDTH
+VOXRAY_AVX2_END
+
+VOXRAY_AVX512_BEGIN
+#define VX_SIMD_WIDTH 16
+namespace simd16 {
+#include "voxray/kernels/cpu_simd_lanes.inc"
+}  // namespace simd16
+#undef VX_SIMD_WIDTH
+VOXRAY_AVX512_END
 
 }  // namespace voxray::kernels
 

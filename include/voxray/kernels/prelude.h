@@ -15,7 +15,7 @@
  *    VX_REF(s).field, and is called with VX_ADDR(state) (a reference in C++ and GLSL's
  *    inout, a pointer in OpenCL C, which has no references);
  *  - kernel states hold per-lane fields only: the CPU stream merges them lane by lane
- *    generically (vx_select_state in cpu_lanes.hpp), so no kernel writes a select;
+ *    generically (vx_select_state_into in kernels/cpu_simd_lanes.inc), so no kernel writes a select;
  *  - a structure kernel `s` names its entry points vx_<s>_load, _begin, _step, _finish,
  *    _status and _trace; `mode` arguments are VX_MODE_* constants at every call site.
  * In C++ the helpers are functions defined per lane namespace (cpu_lanes.hpp); here they

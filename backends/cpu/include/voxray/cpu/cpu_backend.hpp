@@ -1,13 +1,16 @@
 // The CPU backends: voxray::cpu runs the portable kernel on SIMD lanes (one ray per lane,
-// kernels::simd_width lanes refilled as rays finish), voxray::cpu_scalar runs the very same kernel one
-// ray at a time. Both use every core.
+// 16 lanes with AVX-512 where the CPU has it, else 8, refilled as rays finish),
+// voxray::cpu_scalar runs the very same kernel one ray at a time. Both use every core.
 #pragma once
 #include <algorithm>
+#include <bit>
+#include <cstring>
 #include <cstdint>
 #include <memory>
 #include <span>
 #include <vector>
 
+#include "voxray/core/error.hpp"
 #include "voxray/core/hit.hpp"
 #include "voxray/core/ray.hpp"
 #include "voxray/cpu/thread_pool.hpp"
@@ -18,7 +21,10 @@
 namespace voxray {
 
 struct cpu_options {
-    unsigned threads = 0;  // 0: one per hardware thread
+    unsigned threads = 0;     // 0: one per hardware thread
+    // voxray::cpu lanes: 0 = the widest the CPU runs (16 with AVX-512, 8 with AVX2, else 1:
+    // the scalar kernel), or 8 or 16 to insist (an error where the CPU lacks the ISA).
+    unsigned simd_width = 0;
 };
 
 namespace cpu_detail {
@@ -42,79 +48,27 @@ inline hit from_lane(const kernels::scalar::vx_hit& h) {
     return out;
 }
 
-// The SIMD stream: `streams` groups of simd_width lanes, each lane tracing one ray through
-// the kernel's state machine. Whenever lanes finish, their hits are written out and the
-// lanes restart with the next rays, so no lane idles while another ray is still long (as
-// it would with fixed packets). Two independent groups are stepped in turn so that one
-// group's gathers overlap the other's arithmetic (a single group is latency-bound). Per
-// ray, the arithmetic is exactly the scalar kernel's: results are identical bit for bit.
-template <class Kernel, std::uint32_t Mode>
-void trace_stream(const std::uint32_t* blob, const ray* rays, hit* hits, std::size_t count) {
-    using namespace kernels::simd;
-    using K = kernel_lanes<Kernel>;
-    constexpr int W = kernels::simd_width;
-    constexpr int streams = 2;
-    const typename K::header g = K::load(blob);
-    // An invalid ray (tmin > tmax) is a miss before its first step: it fills idle lanes.
-    const ray idle{glm::vec3(0.0f), 1.0f, glm::vec3(1.0f), 0.0f};
-    auto load = [](vx_ray& r, int k, const ray& in) {
-        r.ox[k] = in.origin.x; r.oy[k] = in.origin.y; r.oz[k] = in.origin.z; r.tmin[k] = in.tmin;
-        r.dx[k] = in.direction.x; r.dy[k] = in.direction.y; r.dz[k] = in.direction.z; r.tmax[k] = in.tmax;
-    };
-    struct group {
-        typename K::state state;
-        vx_ray rays;
-        std::size_t lane_ray[W];
-        bool busy = true;
-    } groups[streams];
-    std::size_t next = 0;
-    for (auto& q : groups) {
-        for (int k = 0; k < W; ++k) {
-            q.lane_ray[k] = next < count ? next++ : count;
-            load(q.rays, k, q.lane_ray[k] < count ? rays[q.lane_ray[k]] : idle);
-        }
-        q.state = K::begin(g, q.rays);
-    }
-    // Writes out finished lanes and restarts them; false once the group has nothing left.
-    // Refilling costs a finish, a begin and a lane merge of the whole state, so it waits
-    // until half of the lanes are done (or the rays run out and the group drains).
-    auto refill = [&](group& q) {
-        vx_mask finished = K::status(q.state) != VX_STATUS_ACTIVE;
-        int done = 0;
-        for (int k = 0; k < W; ++k) done += finished[k] != 0;
-        if (done == 0 || (done < W / 2 && next < count)) return true;
-        vx_hit h = K::template finish<Mode>(blob, g, q.state);
-        vx_mask restart = vx_i32_splat(0);
-        bool busy = false;
-        for (int k = 0; k < W; ++k) {
-            if (finished[k] && q.lane_ray[k] < count) {
-                hits[q.lane_ray[k]] = from_lane({h.t[k], h.x[k], h.y[k], h.z[k], h.face[k], h.material[k], h.steps[k], h.status[k]});
-                q.lane_ray[k] = next < count ? next++ : count;
-                if (q.lane_ray[k] < count) {
-                    load(q.rays, k, rays[q.lane_ray[k]]);
-                    restart[k] = -1;
-                }
-            }
-            busy |= q.lane_ray[k] < count;
-        }
-        if (vx_any(restart)) q.state = vx_select_state(restart, K::begin(g, q.rays), q.state);
-        return busy;
-    };
-    for (bool any_busy = true; any_busy;) {
-        any_busy = false;
-        for (auto& q : groups) {
-            if (!q.busy) continue;
-            q.busy = refill(q);
-            if (q.busy) q.state = K::step(blob, g, q.state);
-            any_busy |= q.busy;
-        }
-    }
-}
+}  // namespace cpu_detail
+
+// The stream, once per SIMD lane set (see simd_stream.inc).
+VOXRAY_AVX2_BEGIN
+namespace kernels::simd8 {
+#include "voxray/cpu/simd_stream.inc"
+}  // namespace kernels::simd8
+VOXRAY_AVX2_END
+VOXRAY_AVX512_BEGIN
+namespace kernels::simd16 {
+#include "voxray/cpu/simd_stream.inc"
+}  // namespace kernels::simd16
+VOXRAY_AVX512_END
+
+namespace cpu_detail {
 
 template <bool Simd, class Kernel>
 class cpu_engine {
 public:
-    explicit cpu_engine(cpu_options options) : pool_(std::make_unique<thread_pool>(options.threads)) {}
+    explicit cpu_engine(cpu_options options)
+        : pool_(std::make_unique<thread_pool>(options.threads)), width_(choose_width(options.simd_width)) {}
 
     void upload(std::span<const std::uint32_t> blob) {
         blob_.assign(blob.begin(), blob.end());
@@ -147,21 +101,39 @@ public:
     }
 
     unsigned threads() const { return pool_->size(); }
+    // Rays traced at once per lane group: 1 for cpu-scalar, else 8 or 16.
+    unsigned simd_width() const { return width_; }
 
 private:
+    static unsigned choose_width(unsigned asked) {
+        if (!Simd) return 1;
+        if (asked == 0) return kernels::cpu_has_avx512() ? 16u : (kernels::cpu_has_avx2() ? 8u : 1u);
+        if (asked != 8 && asked != 16) fail("cpu backend: simd_width must be 0, 8 or 16, not ", asked);
+        if (asked == 16 && !kernels::cpu_has_avx512())
+            fail("cpu backend: simd_width 16 needs AVX-512 (avx512f/dq/bw/vl), which this CPU does not have");
+        if (asked == 8 && !kernels::cpu_has_avx2())
+            fail("cpu backend: simd_width 8 needs AVX2, which this CPU does not have");
+        return asked;
+    }
+
     template <std::uint32_t Mode>
     void trace_mode(std::span<const ray> rays, std::span<hit> hits) {
         const std::uint32_t* blob = blob_.data();
         std::size_t batches = (rays.size() + batch_rays - 1) / batch_rays;
-        pool_->parallel_for(batches, [&](std::size_t b) {
+        auto batch = [&](std::size_t b) {
             std::size_t begin = b * batch_rays, end = std::min(rays.size(), begin + batch_rays);
-            if constexpr (Simd) {
-                trace_stream<Kernel, Mode>(blob, &rays[begin], &hits[begin], end - begin);
+            if (width_ == 16) {
+                kernels::simd16::trace_stream<Kernel, Mode>(blob, &rays[begin], &hits[begin], end - begin);
+            } else if (width_ == 8) {
+                kernels::simd8::trace_stream<Kernel, Mode>(blob, &rays[begin], &hits[begin], end - begin);
             } else {
                 using K = kernels::scalar::kernel_lanes<Kernel>;
                 for (std::size_t i = begin; i < end; ++i) hits[i] = from_lane(K::template trace<Mode>(blob, to_lane(rays[i])));
             }
-        });
+        };
+        // A single batch runs on the calling thread: waking the pool would cost more than it saves.
+        if (batches == 1) batch(0);
+        else pool_->parallel_for(batches, batch);
     }
 
     void count_upload(std::uint64_t bytes) {
@@ -170,6 +142,7 @@ private:
     }
 
     std::unique_ptr<thread_pool> pool_;
+    unsigned width_ = 1;  // 1: the scalar kernel
     std::vector<std::uint32_t> blob_;
     std::uint64_t last_bytes_ = 0, total_bytes_ = 0;
 };
