@@ -1,7 +1,8 @@
-// The OpenCL backend against the scalar CPU backend: the same portable kernel, so with
-// correctly rounded division (PoCL) every hit record must be bit-identical — t, voxel,
-// face, material, step count and status. Where the device lacks correctly rounded
-// division, hits must still agree under compare_hits with no ties.
+// OpenCL device specifics (agreement with the CPU on every structure is tests/conformance):
+// the device and its program, update() growing and shrinking the buffer, ray buffers
+// reused across batch sizes, one program per structure built once, and errors that name
+// the device, the call and the limits. With correctly rounded division (PoCL) hits must
+// be cpu_scalar's bit for bit; without, they must still agree with no ties.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -11,6 +12,9 @@
 #include <string>
 #include <vector>
 
+#include "hit_bits.hpp"
+#include "random_models.hpp"
+#include "special_rays.hpp"
 #include "voxray/check/compare.hpp"
 #include "voxray/check/ray_sets.hpp"
 #include "voxray/cpu.hpp"
@@ -21,69 +25,7 @@ namespace {
 
 using namespace voxray;
 
-// ---- models ------------------------------------------------------------------------
-
-voxel_model random_sparse(glm::ivec3 lo, glm::ivec3 hi, int count, std::uint64_t seed) {
-    voxel_model m;
-    rng g(seed);
-    for (int i = 0; i < count; ++i) {
-        glm::ivec3 p(lo.x + g.below(hi.x - lo.x), lo.y + g.below(hi.y - lo.y), lo.z + g.below(hi.z - lo.z));
-        m.set(p, std::uint8_t(1 + g.below(255)));
-    }
-    return m;
-}
-
-voxel_model solid_block(glm::ivec3 lo, glm::ivec3 hi) {
-    voxel_model m;
-    for (int z = lo.z; z < hi.z; ++z)
-        for (int y = lo.y; y < hi.y; ++y)
-            for (int x = lo.x; x < hi.x; ++x) m.set({x, y, z}, std::uint8_t(1 + (x + 3 * y + 7 * z) % 200));
-    return m;
-}
-
-voxel_model hollow_box(glm::ivec3 lo, glm::ivec3 hi) {
-    voxel_model m;
-    for (int z = lo.z; z < hi.z; ++z)
-        for (int y = lo.y; y < hi.y; ++y)
-            for (int x = lo.x; x < hi.x; ++x) {
-                bool shell = x == lo.x || y == lo.y || z == lo.z || x == hi.x - 1 || y == hi.y - 1 || z == hi.z - 1;
-                if (shell) m.set({x, y, z}, std::uint8_t(1 + (x * 5 + y + z * 11) % 250));
-            }
-    return m;
-}
-
-voxel_model single_voxel(glm::ivec3 p) {
-    voxel_model m;
-    m.set(p, 42);
-    return m;
-}
-
-struct named_model {
-    std::string name;
-    voxel_model model;
-};
-
-std::vector<named_model> models() {
-    std::vector<named_model> out;
-    out.push_back({"random_sparse", random_sparse({0, 0, 0}, {40, 40, 40}, 3000, 1)});
-    out.push_back({"random_multi_chunk", random_sparse({0, 0, 0}, {70, 35, 50}, 6000, 2)});
-    out.push_back({"solid_block", solid_block({0, 0, 0}, {20, 12, 8})});
-    out.push_back({"hollow_box", hollow_box({3, 2, 1}, {27, 26, 25})});
-    out.push_back({"single_voxel", single_voxel({5, 7, 9})});
-    out.push_back({"negative_sparse", random_sparse({-60, -45, -33}, {-10, -5, -2}, 3000, 3)});
-    out.push_back({"straddling_zero", random_sparse({-20, -17, -9}, {21, 14, 30}, 4000, 4)});
-    out.push_back({"negative_hollow", hollow_box({-40, -30, -20}, {-18, -12, -1})});
-    return out;
-}
-
 // ---- comparison ----------------------------------------------------------------------
-
-std::vector<ray> rays_for(const box3i& bounds, std::uint64_t seed) {
-    auto rays = random_rays(bounds, 20000, seed);
-    auto check = check_rays(bounds, 2, 20000, seed + 100);
-    rays.insert(rays.end(), check.begin(), check.end());
-    return rays;
-}
 
 template <class Backend>
 std::vector<hit> trace_with(tracer<Backend, dense_grid>& t, const std::vector<ray>& rays, std::uint32_t mode) {
@@ -91,18 +33,6 @@ std::vector<hit> trace_with(tracer<Backend, dense_grid>& t, const std::vector<ra
     if (mode == VX_MODE_ANY) t.any_hit(rays, hits);
     else t.closest_hit(rays, hits);
     return hits;
-}
-
-bool bit_identical(const hit& a, const hit& b) { return std::memcmp(&a, &b, sizeof(hit)) == 0; }
-
-std::string describe(const ray& r, const hit& h) {
-    char buf[320];
-    std::snprintf(buf, sizeof buf,
-                  "ray o=(%.9g %.9g %.9g) d=(%.9g %.9g %.9g) tmin=%.9g tmax=%.9g -> t=%.9g voxel=(%d %d %d) face=%s "
-                  "material=%u steps=%u status=%u",
-                  r.origin.x, r.origin.y, r.origin.z, r.direction.x, r.direction.y, r.direction.z, r.tmin, r.tmax,
-                  h.t, h.voxel.x, h.voxel.y, h.voxel.z, face_name(h.normal), h.material, h.steps, h.status);
-    return buf;
 }
 
 // Compares OpenCL hits with the scalar CPU reference: no mismatches, no ties, and
@@ -113,11 +43,12 @@ agreement_counts expect_agreement(const std::string& what, const std::vector<ray
     std::size_t different_bits = 0, reported = 0;
     for (std::size_t i = 0; i < rays.size(); ++i) {
         counts.add(compare_hits(rays[i], reference[i], tested[i]));
-        if (!bit_identical(reference[i], tested[i])) {
+        if (!test::identical(reference[i], tested[i])) {
             ++different_bits;
             if (reported++ < 5)
-                ADD_FAILURE() << what << ": ray " << i << "\n  cpu:    " << describe(rays[i], reference[i])
-                              << "\n  opencl: " << describe(rays[i], tested[i]);
+                ADD_FAILURE() << what << ": ray " << i << " " << test::describe(rays[i])
+                              << "\n  cpu:    " << test::describe(reference[i])
+                              << "\n  opencl: " << test::describe(tested[i]);
         }
     }
     EXPECT_EQ(counts.mismatches, 0u) << what;
@@ -129,17 +60,11 @@ agreement_counts expect_agreement(const std::string& what, const std::vector<ray
     return counts;
 }
 
-std::size_t count_hits(const std::vector<hit>& hits) {
-    std::size_t n = 0;
-    for (auto& h : hits) n += h.is_hit();
-    return n;
-}
-
 // ---- tests ---------------------------------------------------------------------------
 
 TEST(opencl, device_is_found_and_program_builds) {
     // No GTEST_SKIP anywhere: CI must have a device (PoCL), so its absence fails here.
-    dense_grid grid(single_voxel({0, 0, 0}));
+    dense_grid grid(test::single_voxel({0, 0, 0}));
     tracer<opencl, dense_grid> t(grid);
     auto& e = t.engine();
     EXPECT_FALSE(e.device_name().empty());
@@ -151,104 +76,12 @@ TEST(opencl, device_is_found_and_program_builds) {
                 e.correctly_rounded_division() ? "yes" : "no");
 }
 
-TEST(opencl, agrees_with_cpu_scalar_on_every_model) {
-    std::uint64_t seed = 10;
-    for (auto& [name, model] : models()) {
-        dense_grid grid(model);
-        tracer<opencl, dense_grid> gpu(grid);
-        tracer<cpu_scalar, dense_grid> cpu(grid);
-        bool exact = gpu.engine().correctly_rounded_division();
-        auto rays = rays_for(grid.bounds(), seed++);
-        for (std::uint32_t mode : {VX_MODE_CLOSEST, VX_MODE_ANY}) {
-            auto reference = trace_with(cpu, rays, mode);
-            auto tested = trace_with(gpu, rays, mode);
-            std::string what = name + (mode == VX_MODE_ANY ? " (any hit)" : " (closest hit)");
-            auto counts = expect_agreement(what, rays, reference, tested, exact);
-            std::printf("[opencl] %-32s %zu voxels: %llu rays, %zu hits, same %llu, ties %llu, mismatches %llu\n",
-                        what.c_str(), std::size_t(grid.voxel_count()), (unsigned long long)counts.rays,
-                        count_hits(reference), (unsigned long long)counts.same, (unsigned long long)counts.ties,
-                        (unsigned long long)counts.mismatches);
-            // Guard against a vacuous pass: most models must actually be hit.
-            if (name != "single_voxel") {
-                EXPECT_GT(count_hits(reference), rays.size() / 20) << name;
-            }
-        }
-    }
-}
-
-// Rays from every lattice point of a box slightly larger than the model, in all 26
-// directions of {-1,0,1}^3: origins exactly on faces, edges and corners, rays running
-// along faces and through edges — where a sign of zero or a NaN rule could differ.
-TEST(opencl, lattice_rays_are_bit_identical) {
-    voxel_model model = hollow_box({0, 0, 0}, {6, 5, 4});
-    model.set({2, 2, 2}, 77);  // something inside the shell, for rays that start within it
-    dense_grid grid(model);
-    std::vector<ray> rays;
-    for (int z = -1; z <= 5; ++z)
-        for (int y = -1; y <= 6; ++y)
-            for (int x = -1; x <= 7; ++x)
-                for (int d = 0; d < 27; ++d) {
-                    glm::vec3 dir(d % 3 - 1, d / 3 % 3 - 1, d / 9 - 1);
-                    if (dir == glm::vec3(0.0f)) continue;
-                    rays.push_back(ray{glm::vec3(x, y, z), 0.0f, dir, std::numeric_limits<float>::infinity()});
-                    rays.push_back(ray{glm::vec3(x, y, z) + 0.5f, 0.25f, dir, 3.0f});
-                }
-    tracer<opencl, dense_grid> gpu(grid);
-    tracer<cpu_scalar, dense_grid> cpu(grid);
-    auto reference = trace_with(cpu, rays, VX_MODE_CLOSEST);
-    auto counts = expect_agreement("lattice", rays, reference, trace_with(gpu, rays, VX_MODE_CLOSEST),
-                                   gpu.engine().correctly_rounded_division());
-    EXPECT_GT(count_hits(reference), rays.size() / 10);
-    std::printf("[opencl] lattice rays: %llu rays, %zu hits, same %llu, ties %llu, mismatches %llu\n",
-                (unsigned long long)counts.rays, count_hits(reference), (unsigned long long)counts.same,
-                (unsigned long long)counts.ties, (unsigned long long)counts.mismatches);
-}
-
-TEST(opencl, empty_model_misses_everything) {
-    dense_grid grid{voxel_model{}};
-    tracer<opencl, dense_grid> gpu(grid);
-    tracer<cpu_scalar, dense_grid> cpu(grid);
-    auto rays = random_rays(box3i{{-4, -4, -4}, {4, 4, 4}}, 2000, 7);
-    auto tested = trace_with(gpu, rays, VX_MODE_CLOSEST);
-    EXPECT_EQ(count_hits(tested), 0u);
-    expect_agreement("empty", rays, trace_with(cpu, rays, VX_MODE_CLOSEST), tested,
-                     gpu.engine().correctly_rounded_division());
-}
-
-TEST(opencl, invalid_rays_miss) {
-    dense_grid grid(solid_block({0, 0, 0}, {8, 8, 8}));
-    tracer<opencl, dense_grid> gpu(grid);
-    const float nan = std::numeric_limits<float>::quiet_NaN(), inf = std::numeric_limits<float>::infinity();
-    // Each of these points straight at the block, so only the invalid field makes it miss.
-    ray good{{-5.0f, 4.5f, 4.5f}, 0.0f, {1.0f, 0.0f, 0.0f}, inf};
-    std::vector<ray> rays(9, good);
-    rays[1].origin.y = nan;
-    rays[2].direction.x = nan;
-    rays[3].tmin = nan;
-    rays[4].tmax = nan;
-    rays[5].origin.x = -inf;
-    rays[6].direction = glm::vec3(0.0f);
-    rays[7].tmin = 3.0f, rays[7].tmax = 2.0f;
-    rays[8].direction.z = inf;
-    std::vector<hit> hits(rays.size());
-    gpu.closest_hit(rays, hits);
-    ASSERT_TRUE(hits[0].is_hit());
-    EXPECT_EQ(hits[0].voxel, glm::ivec3(0, 4, 4));
-    EXPECT_EQ(hits[0].normal, face::neg_x);
-    EXPECT_FLOAT_EQ(hits[0].t, 5.0f);
-    for (std::size_t i = 1; i < rays.size(); ++i) {
-        EXPECT_EQ(hits[i].status, VX_STATUS_MISS) << "ray " << i;
-        EXPECT_EQ(hits[i].normal, face::none) << "ray " << i;
-        EXPECT_TRUE(std::isinf(hits[i].t)) << "ray " << i;
-    }
-}
-
 TEST(opencl, update_replaces_the_structure) {
-    dense_grid small(solid_block({0, 0, 0}, {4, 4, 4}));
-    dense_grid big(hollow_box({-10, -10, -10}, {30, 30, 30}));  // a larger blob: the buffer must grow
+    dense_grid small(test::patterned_block({0, 0, 0}, {4, 4, 4}));
+    dense_grid big(test::hollow_box(box3i{{-10, -10, -10}, {30, 30, 30}}));  // a larger blob: the buffer must grow
     ASSERT_GT(big.blob().size(), small.blob().size());
     tracer<opencl, dense_grid> gpu(small);
-    auto rays = rays_for(big.bounds(), 99);
+    auto rays = test::mixed_rays(big.bounds(), 10000, 99);
     auto before = trace_with(gpu, rays, VX_MODE_CLOSEST);
 
     gpu.update(big);
@@ -257,7 +90,7 @@ TEST(opencl, update_replaces_the_structure) {
     expect_agreement("after update", rays, trace_with(cpu, rays, VX_MODE_CLOSEST), after,
                      gpu.engine().correctly_rounded_division());
     std::size_t changed = 0;
-    for (std::size_t i = 0; i < rays.size(); ++i) changed += !bit_identical(before[i], after[i]);
+    for (std::size_t i = 0; i < rays.size(); ++i) changed += !test::identical(before[i], after[i]);
     EXPECT_GT(changed, rays.size() / 4);
 
     // And back to the smaller blob, which now sits in a larger buffer.
@@ -268,7 +101,7 @@ TEST(opencl, update_replaces_the_structure) {
 }
 
 TEST(opencl, ray_buffers_are_reused_across_sizes) {
-    dense_grid grid(random_sparse({0, 0, 0}, {30, 30, 30}, 2000, 5));
+    dense_grid grid(test::random_sparse({{0, 0, 0}, {30, 30, 30}}, 2000, 5));
     tracer<opencl, dense_grid> gpu(grid);
     tracer<cpu_scalar, dense_grid> cpu(grid);
     // Odd sizes exercise the rounded-up global size (items past `count` must not write).
@@ -292,7 +125,7 @@ TEST(opencl, ray_buffers_are_reused_across_sizes) {
 }
 
 TEST(opencl, program_is_built_once_per_device) {
-    dense_grid grid(single_voxel({1, 2, 3}));
+    dense_grid grid(test::single_voxel({1, 2, 3}));
     tracer<opencl, dense_grid> a(grid);
     tracer<opencl, dense_grid> b(grid);
     auto ctx1 = opencl_detail::acquire_device_context({});
@@ -314,7 +147,7 @@ TEST(opencl, a_broken_program_breaks_only_its_structure) {
     } catch (const opencl_error& e) {
         EXPECT_NE(std::string(e.what()).find("broken_toy"), std::string::npos) << e.what();
     }
-    dense_grid grid(single_voxel({1, 2, 3}));
+    dense_grid grid(test::single_voxel({1, 2, 3}));
     tracer<opencl, dense_grid> t(grid);
     std::vector<ray> rays{ray{{1.5f, 2.5f, -5.0f}, 0.0f, {0.0f, 0.0f, 1.0f}, INFINITY}};
     std::vector<hit> hits(1);
@@ -323,7 +156,7 @@ TEST(opencl, a_broken_program_breaks_only_its_structure) {
 }
 
 TEST(opencl, selecting_a_missing_device_names_what_exists) {
-    dense_grid grid(single_voxel({0, 0, 0}));
+    dense_grid grid(test::single_voxel({0, 0, 0}));
     opencl_options options;
     options.device = "no-such-device-xyzzy";
     try {

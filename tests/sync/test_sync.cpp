@@ -15,10 +15,15 @@
 
 #include "edited_grid.hpp"
 #include "random_models.hpp"
+#include "voxray/core/type_list.hpp"
 #include "voxray/cpu.hpp"
-#include "voxray/opencl.hpp"
 #include "voxray/sync/commit_packet.hpp"
+#if VOXRAY_WITH_OPENCL
+#include "voxray/opencl.hpp"
+#endif
+#if VOXRAY_WITH_VULKAN
 #include "voxray/vulkan.hpp"
+#endif
 
 // The portable commit kernel compiled as C++ (scalar lanes supply uint and vx_load).
 namespace voxray::kernels::scalar {
@@ -30,6 +35,16 @@ namespace {
 using namespace voxray;
 using test::edit_kind;
 using test::edited_grid;
+
+// Every backend built: the CPU always, the GPU ones when present (a missing device fails).
+using backends = type_list<cpu
+#if VOXRAY_WITH_OPENCL
+                           , opencl
+#endif
+#if VOXRAY_WITH_VULKAN
+                           , vulkan
+#endif
+                           >;
 
 edited_grid initial_grid() { return edited_grid(dense_grid(test::random_model(64, 0.02f, 7, {-9, 3, -30}))); }
 
@@ -119,13 +134,17 @@ void random_updates(typename Backend::options options, std::uint64_t seed, int s
 }
 
 TEST(sync, cpu_random_partial_updates) { random_updates<cpu>({}, 11, 60); }
+#if VOXRAY_WITH_OPENCL
 TEST(sync, opencl_random_partial_updates) { random_updates<opencl>({}, 12, 60); }
+#endif
+#if VOXRAY_WITH_VULKAN
 TEST(sync, vulkan_random_partial_updates) { random_updates<vulkan>({}, 13, 60); }
 TEST(sync, vulkan_staged_random_partial_updates) {
     vulkan_options options;
     options.force_staging = true;  // packet and blob through copy commands, as on a discrete GPU
     random_updates<vulkan>(options, 14, 40);
 }
+#endif
 
 // A blob that changed size cannot be patched: the tracer sends it whole.
 template <class Backend>
@@ -147,9 +166,7 @@ void size_change(typename Backend::options options) {
 }
 
 TEST(sync, size_change_uploads_whole_blob) {
-    size_change<cpu>({});
-    size_change<opencl>({});
-    size_change<vulkan>({});
+    for_each_type(backends{}, []<class B>() { size_change<B>({}); });
 }
 
 // A range past the end of the blob is an error naming it, and changes nothing.
@@ -163,9 +180,7 @@ void bad_range(typename Backend::options options) {
 }
 
 TEST(sync, range_past_end_is_an_error) {
-    bad_range<cpu>({});
-    bad_range<opencl>({});
-    bad_range<vulkan>({});
+    for_each_type(backends{}, []<class B>() { bad_range<B>({}); });
 }
 
 // The portable commit kernel as C++: every record type lands where it belongs.
@@ -217,12 +232,12 @@ void time_one_brick(typename Backend::options options) {
 }
 
 TEST(sync, one_brick_update_timing) {
-    time_one_brick<cpu>({});
-    time_one_brick<opencl>({});
-    time_one_brick<vulkan>({});
+    for_each_type(backends{}, []<class B>() { time_one_brick<B>({}); });
+#if VOXRAY_WITH_VULKAN
     vulkan_options staged;
     staged.force_staging = true;
     time_one_brick<vulkan>(staged);
+#endif
 }
 
 }  // namespace

@@ -205,7 +205,10 @@ brickmap<Payload, E> brickmap<Payload, E>::build(const voxel_model& model, unsig
         for (;;) {
             std::size_t k = next.fetch_add(1, std::memory_order_relaxed);
             if (k >= chunks.size()) break;
-            auto [origin, chunk] = chunks[k];
+            // Plain variables, not a structured binding: the lambda below captures `chunk`,
+            // which clang before 16 rejects for bindings.
+            glm::ivec3 origin = chunks[k].first;
+            const voxel_model::chunk* chunk = chunks[k].second;
             // Chunks are 16-aligned in world coordinates, the world box is not: q0 may be
             // negative by up to 15, but every solid voxel lies inside the world.
             glm::ivec3 q0 = origin - m.world_.min;

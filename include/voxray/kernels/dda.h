@@ -105,6 +105,14 @@ VX_FN vx_dda vx_dda_begin_scaled(vx_ray r, float gx, float gy, float gz, int ex,
     vx_f32 px = vx_sel(valid, d.ox + r.dx * to_cells * tp, 0.0f);
     vx_f32 py = vx_sel(valid, d.oy + r.dy * to_cells * tp, 0.0f);
     vx_f32 pz = vx_sel(valid, d.oz + r.dz * to_cells * tp, 0.0f);
+    /* A ray whose span in the box has zero length (it starts on the box's far side, or only
+     * touches an edge or corner) meets a voxel only if that point lies in one: cells are
+     * half-open, so a point on a max face lies outside. Off the entry axis the point must
+     * be inside; on it, it is on the face by construction. */
+    vx_mask touch = tenter == texit;
+    vx_mask point_inside = (ax || (px >= 0.0f && px < vx_i2f(ex))) && (ay || (py >= 0.0f && py < vx_i2f(ey))) &&
+                           (az || (pz >= 0.0f && pz < vx_i2f(ez)));
+    valid = valid && (!touch || point_inside);
     d.cx = vx_sel(ax, vx_sel(d.sx > 0, 0, ex - 1), vx_dda_start_cell(px, ex));
     d.cy = vx_sel(ay, vx_sel(d.sy > 0, 0, ey - 1), vx_dda_start_cell(py, ey));
     d.cz = vx_sel(az, vx_sel(d.sz > 0, 0, ez - 1), vx_dda_start_cell(pz, ez));
@@ -160,30 +168,56 @@ VX_FN vx_dda vx_dda_advance(vx_dda d, vx_mask go, int ex, int ey, int ez) {
     return d;
 }
 
+/* t at which the ray enters cell l (cells of `size` voxels from voxel `base`) along one
+ * axis: the plane it crosses to get there, computed as every crossing is. */
+VX_FN vx_f32 vx_dda_entry_t(vx_i32 base, vx_i32 l, vx_i32 size, vx_i32 step, vx_f32 o, vx_f32 inv) {
+    return (vx_i2f(base + (l + vx_sel(step < 0, 1, 0)) * size) - o) * inv;
+}
+
+/* The cell (as above) the walk is in at parameter t along one axis, from an estimate that
+ * rounding may have put one cell off. A moving walk has entered a cell once its plane's
+ * crossing t is <= t, ties included (vx_dda_move steps tied axes together), so a
+ * structure that jumps to the cell at t lands exactly where the reference walk over
+ * voxels is. A non-moving axis keeps the estimate. */
+VX_FN vx_i32 vx_dda_cell_at(vx_i32 estimate, vx_i32 base, vx_i32 size, vx_i32 step, vx_f32 o, vx_f32 inv, vx_f32 t) {
+    vx_i32 c = vx_sel(step != 0 && vx_dda_entry_t(base, estimate, size, step, o, inv) > t, estimate - step, estimate);
+    return vx_sel(step != 0 && vx_dda_entry_t(base, c + step, size, step, o, inv) <= t, c + step, c);
+}
+
 /* One axis of vx_dda_reenter: the index, in cells of `sub` voxels, of the sub-cell of the
- * cell [c, c + n * sub) where the ray is at parameter t. On the axis the cell was entered
- * through that is the first (or last) slab exactly; elsewhere the floor of the point at t,
- * clamped into the cell (the point is inside up to rounding). Power-of-two sizes keep the
- * scaling exact. */
-VX_FN vx_i32 vx_dda_reenter_axis(vx_f32 o, vx_f32 dir, vx_f32 t, vx_i32 c, vx_i32 sub, vx_i32 n, vx_u32 face,
-                                 uint face_neg, uint face_pos) {
+ * cell [c, c + n * sub) where the walk is at parameter t: the floor of the point at t, and
+ * where the cell was entered by a move, corrected to the crossing rule (vx_dda_cell_at),
+ * which also puts the axis the cell was entered through on its first (or last) slab
+ * exactly. In the cell the walk began in (`start`: no move yet) the floor stays, the
+ * half-open rule vx_dda_begin_scaled applies to the ray's first cell. Power-of-two sizes keep the scaling exact. */
+VX_FN vx_i32 vx_dda_reenter_axis(vx_f32 o, vx_f32 dir, vx_f32 inv, vx_i32 step, vx_f32 t, vx_i32 c, vx_i32 sub,
+                                 vx_i32 n, vx_mask start) {
     vx_f32 p = (o + dir * t - vx_i2f(c)) / vx_i2f(sub);
     vx_i32 l = vx_f2i(vx_floor(vx_fmin(vx_fmax(p, 0.0f), vx_i2f(n - 1))));
-    return vx_sel(face == face_neg, 0, vx_sel(face == face_pos, n - 1, l));
+    l = vx_sel(start, l, vx_dda_cell_at(l, c, sub, step, o, inv, t));
+    return vx_sel(l < 0, 0, vx_sel(l >= n, n - 1, l));
 }
 
 /* Shared walk primitive: continue the walk, in lanes m, one level down inside the cell it
  * is in (min voxel d.c, `size` voxels wide), in sub-cells of `sub` voxels, starting at the
- * sub-cell where the ray entered the cell (at d.t, through d.face). (dx, dy, dz) is the
- * ray direction. Every crossing t stays (plane - o) / d in voxel units, so a structure
- * that descends (brickmap, NAADF, a DAG's octants) meets the same planes, bit for bit,
- * as the reference walk over voxels. */
+ * sub-cell where the ray entered the cell (at d.t). (dx, dy, dz) is the ray direction.
+ * Every crossing t stays (plane - o) / d in voxel units, so a structure that descends
+ * (brickmap, NAADF, a DAG's octants) meets the same planes, bit for bit, as the reference
+ * walk over voxels, and reports the same face: the first axis, x before y before z, whose
+ * plane the ray crossed at d.t, interior planes of the cell included. */
 VX_FN vx_dda vx_dda_reenter(vx_dda d, vx_f32 dx, vx_f32 dy, vx_f32 dz, vx_i32 size, vx_i32 sub, vx_mask m) {
     vx_f32 t = vx_sel(m, d.t, 0.0f);
     vx_i32 n = vx_sel(m, size / sub, 1);
-    vx_i32 lx = vx_dda_reenter_axis(d.ox, vx_sel(m, dx, 0.0f), t, d.cx, sub, n, d.face, VX_FACE_NEG_X, VX_FACE_POS_X);
-    vx_i32 ly = vx_dda_reenter_axis(d.oy, vx_sel(m, dy, 0.0f), t, d.cy, sub, n, d.face, VX_FACE_NEG_Y, VX_FACE_POS_Y);
-    vx_i32 lz = vx_dda_reenter_axis(d.oz, vx_sel(m, dz, 0.0f), t, d.cz, sub, n, d.face, VX_FACE_NEG_Z, VX_FACE_POS_Z);
+    vx_mask start = d.steps == 0u; /* still in the cell vx_dda_begin_scaled chose */
+    vx_i32 lx = vx_dda_reenter_axis(d.ox, vx_sel(m, dx, 0.0f), d.ix, d.sx, t, d.cx, sub, n, start);
+    vx_i32 ly = vx_dda_reenter_axis(d.oy, vx_sel(m, dy, 0.0f), d.iy, d.sy, t, d.cy, sub, n, start);
+    vx_i32 lz = vx_dda_reenter_axis(d.oz, vx_sel(m, dz, 0.0f), d.iz, d.sz, t, d.cz, sub, n, start);
+    vx_mask fx = m && !start && d.sx != 0 && vx_dda_entry_t(d.cx, lx, sub, d.sx, d.ox, d.ix) == t;
+    vx_mask fy = m && !start && d.sy != 0 && vx_dda_entry_t(d.cy, ly, sub, d.sy, d.oy, d.iy) == t;
+    vx_mask fz = m && !start && d.sz != 0 && vx_dda_entry_t(d.cz, lz, sub, d.sz, d.oz, d.iz) == t;
+    d.face = vx_sel(fx, vx_sel(d.sx > 0, VX_FACE_NEG_X, VX_FACE_POS_X),
+             vx_sel(fy, vx_sel(d.sy > 0, VX_FACE_NEG_Y, VX_FACE_POS_Y),
+             vx_sel(fz, vx_sel(d.sz > 0, VX_FACE_NEG_Z, VX_FACE_POS_Z), d.face)));
     d.cx = vx_sel(m, d.cx + lx * sub, d.cx);
     d.cy = vx_sel(m, d.cy + ly * sub, d.cy);
     d.cz = vx_sel(m, d.cz + lz * sub, d.cz);
@@ -193,11 +227,28 @@ VX_FN vx_dda vx_dda_reenter(vx_dda d, vx_f32 dx, vx_f32 dy, vx_f32 dz, vx_i32 si
     return d;
 }
 
+/* One axis of vx_dda_leave_box: the cell past the box on an exit axis, else the cell the
+ * walk is in at t (clamped into the box, which the ray is inside of on that axis). */
+VX_FN vx_i32 vx_dda_leave_axis(vx_mask exits, vx_i32 lo, vx_i32 hi, vx_i32 step, vx_f32 o, vx_f32 dir, vx_f32 inv,
+                               vx_f32 t) {
+    vx_i32 estimate = vx_f2i(vx_floor(vx_fmin(vx_fmax(o + dir * t, vx_i2f(lo)), vx_i2f(hi - 1))));
+    vx_i32 c = vx_dda_cell_at(estimate, vx_i32_splat(0), vx_i32_splat(1), step, o, inv, t);
+    c = vx_sel(c < lo, lo, vx_sel(c >= hi, hi - 1, c));
+    return vx_sel(exits, vx_sel(step > 0, hi, lo - 1), c);
+}
+
+/* Whether the walk stepped along this axis at t, into cell c from `from` (the reported
+ * face is the first such axis, x before y before z, as in vx_dda_move_sized). */
+VX_FN vx_mask vx_dda_stepped_at(vx_i32 c, vx_i32 from, vx_i32 step, vx_f32 o, vx_f32 inv, vx_f32 t) {
+    return step != 0 && c != from && vx_dda_entry_t(vx_i32_splat(0), c, vx_i32_splat(1), step, o, inv) == t;
+}
+
 /* Shared walk primitive: in lanes m, leave the empty box [lo, hi) (voxels; the walk is
  * inside it) in one move, to the voxel just past its exit face; every axis whose plane
  * lies at the exit t steps (edges and corners, as in vx_dda_move_sized). The walk is
  * then at voxel level (cell size 1); lanes past tmax miss. Leaving the grid is the
- * caller's test. Crossings are (plane - o) / d at integer planes, as everywhere. */
+ * caller's test. The cell, t, face and next crossings are exactly those the reference
+ * walk over voxels reaches (tests/cpu/test_walk_primitives.cpp checks it). */
 VX_FN vx_dda vx_dda_leave_box(vx_dda d, vx_f32 dx, vx_f32 dy, vx_f32 dz, vx_i32 lox, vx_i32 loy, vx_i32 loz,
                               vx_i32 hix, vx_i32 hiy, vx_i32 hiz, vx_mask m) {
     vx_f32 ex = vx_dda_exit_t_sized(lox, hix - lox, d.sx, d.ox, d.ix);
@@ -206,13 +257,14 @@ VX_FN vx_dda vx_dda_leave_box(vx_dda d, vx_f32 dx, vx_f32 dy, vx_f32 dz, vx_i32 
     vx_f32 texit = vx_fmin(ex, vx_fmin(ey, ez));
     vx_mask mx = m && ex == texit, my = m && ey == texit, mz = m && ez == texit;
     vx_f32 t = vx_sel(m, texit, 0.0f);
-    /* Off the exit axes the ray is inside the box at t (up to rounding): clamp. */
-    vx_i32 px = vx_f2i(vx_floor(vx_fmin(vx_fmax(d.ox + vx_sel(m, dx, 0.0f) * t, vx_i2f(lox)), vx_i2f(hix - 1))));
-    vx_i32 py = vx_f2i(vx_floor(vx_fmin(vx_fmax(d.oy + vx_sel(m, dy, 0.0f) * t, vx_i2f(loy)), vx_i2f(hiy - 1))));
-    vx_i32 pz = vx_f2i(vx_floor(vx_fmin(vx_fmax(d.oz + vx_sel(m, dz, 0.0f) * t, vx_i2f(loz)), vx_i2f(hiz - 1))));
-    d.cx = vx_sel(m, vx_sel(mx, vx_sel(d.sx > 0, hix, lox - 1), px), d.cx);
-    d.cy = vx_sel(m, vx_sel(my, vx_sel(d.sy > 0, hiy, loy - 1), py), d.cy);
-    d.cz = vx_sel(m, vx_sel(mz, vx_sel(d.sz > 0, hiz, loz - 1), pz), d.cz);
+    vx_i32 fx = d.cx, fy = d.cy, fz = d.cz;
+    d.cx = vx_sel(m, vx_dda_leave_axis(mx, lox, hix, d.sx, d.ox, dx, d.ix, t), d.cx);
+    d.cy = vx_sel(m, vx_dda_leave_axis(my, loy, hiy, d.sy, d.oy, dy, d.iy, t), d.cy);
+    d.cz = vx_sel(m, vx_dda_leave_axis(mz, loz, hiz, d.sz, d.oz, dz, d.iz, t), d.cz);
+    /* Interior planes crossed at the exit t step too, and may name the face. */
+    mx = m && (mx || vx_dda_stepped_at(d.cx, fx, d.sx, d.ox, d.ix, t));
+    my = m && (my || vx_dda_stepped_at(d.cy, fy, d.sy, d.oy, d.iy, t));
+    mz = m && (mz || vx_dda_stepped_at(d.cz, fz, d.sz, d.oz, d.iz, t));
     d.nx = vx_sel(m, vx_dda_exit_t(d.cx, d.sx, d.ox, d.ix), d.nx);
     d.ny = vx_sel(m, vx_dda_exit_t(d.cy, d.sy, d.oy, d.iy), d.ny);
     d.nz = vx_sel(m, vx_dda_exit_t(d.cz, d.sz, d.oz, d.iz), d.nz);

@@ -1,0 +1,64 @@
+// Seeded random region edits (spheres, boxes, capsules; fill, erase, paint) and the same
+// edits applied voxel by voxel to a plain voxel_model: the reference an edited structure
+// is checked against. Regions decide membership in exact integers (edit/regions.hpp), so
+// the reference and the structure agree voxel for voxel.
+#pragma once
+#include <algorithm>
+#include <cstdint>
+#include <variant>
+#include <vector>
+
+#include "voxray/check/ray_sets.hpp"
+#include "voxray/edit/region_edit.hpp"
+#include "voxray/model/voxel_model.hpp"
+
+namespace voxray::test {
+
+// `count` edits inside `area`, each region up to a quarter of its smallest side.
+inline std::vector<region_edit> random_edits(const box3i& area, int count, std::uint64_t seed) {
+    rng g(seed);
+    glm::ivec3 size = glm::max(area.extent(), glm::ivec3(1));
+    int reach = std::max(2, std::min({size.x, size.y, size.z}) / 4);
+    auto point = [&] { return area.min + glm::ivec3(g.below(size.x), g.below(size.y), g.below(size.z)); };
+    std::vector<region_edit> edits;
+    for (int i = 0; i < count; ++i) {
+        region_edit e;
+        e.op = static_cast<edit_op>(g.below(3));
+        e.value = std::uint32_t(1 + g.below(255));
+        glm::ivec3 a = point();
+        switch (g.below(3)) {
+        case 0: e.region = regions::sphere{a, 1 + g.below(reach)}; break;
+        case 1: {
+            glm::ivec3 extent(1 + g.below(reach), 1 + g.below(reach), 1 + g.below(reach));
+            e.region = regions::box{{a, a + extent}};
+            break;
+        }
+        default: e.region = regions::capsule{a, point(), g.below(3)}; break;
+        }
+        edits.push_back(e);
+    }
+    return edits;
+}
+
+// Edit e on every voxel of its region inside `world` (a structure never sets voxels
+// outside its world box).
+inline void apply_to_model(voxel_model& model, const region_edit& e, const box3i& world) {
+    std::visit(
+        [&](const auto& region) {
+            box3i b = region.bounds();
+            b.min = glm::max(b.min, world.min);
+            b.max = glm::min(b.max, world.max);
+            for (int z = b.min.z; z < b.max.z; ++z)
+                for (int y = b.min.y; y < b.max.y; ++y)
+                    for (int x = b.min.x; x < b.max.x; ++x) {
+                        glm::ivec3 p(x, y, z);
+                        if (!region.contains(p)) continue;
+                        if (e.op == edit_op::fill) model.set(p, std::uint8_t(e.value));
+                        else if (e.op == edit_op::erase) model.set(p, 0);
+                        else if (model.get(p)) model.set(p, std::uint8_t(e.value));
+                    }
+        },
+        e.region);
+}
+
+}  // namespace voxray::test

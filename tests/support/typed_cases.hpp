@@ -1,0 +1,70 @@
+// Typed-test cases from type lists: every backend x every registered structure, as the
+// ::testing::Types<...> a typed test suite is instantiated with, and readable names for
+// them ("brickmap_on_cpu_scalar") instead of gtest's bare indices.
+#pragma once
+#include <string>
+
+#include <gtest/gtest.h>
+
+#include "voxray/core/type_list.hpp"
+
+namespace voxray::test {
+
+template <class Backend, class Structure>
+struct trace_case {
+    using backend = Backend;
+    using structure = Structure;
+};
+
+template <class... Lists>
+struct concat;
+template <>
+struct concat<> {
+    using type = type_list<>;
+};
+template <class... A>
+struct concat<type_list<A...>> {
+    using type = type_list<A...>;
+};
+template <class... A, class... B, class... Rest>
+struct concat<type_list<A...>, type_list<B...>, Rest...> {
+    using type = typename concat<type_list<A..., B...>, Rest...>::type;
+};
+
+// type_list<trace_case<B, S>...> for every B in Backends and S in Structures.
+template <class Backends, class Structures>
+struct cross;
+template <class... B, class Structures>
+struct cross<type_list<B...>, Structures> {
+    template <class One, class List>
+    struct with;
+    template <class One, class... S>
+    struct with<One, type_list<S...>> {
+        using type = type_list<trace_case<One, S>...>;
+    };
+    using type = typename concat<typename with<B, Structures>::type...>::type;
+};
+
+template <class List>
+struct gtest_types;
+template <class... T>
+struct gtest_types<type_list<T...>> {
+    using type = ::testing::Types<T...>;
+};
+
+// ::testing::Types<trace_case<B, S>...> over backends B... and every S of Structures.
+template <class Structures, class... Backends>
+using cases_t = typename gtest_types<typename cross<type_list<Backends...>, Structures>::type>::type;
+
+// Test names: "<structure>_on_<backend>", with characters gtest dislikes replaced.
+struct case_names {
+    template <class Case>
+    static std::string GetName(int) {
+        std::string s = std::string(Case::structure::name) + "_on_" + Case::backend::name;
+        for (char& c : s)
+            if (c == '-') c = '_';
+        return s;
+    }
+};
+
+}  // namespace voxray::test
