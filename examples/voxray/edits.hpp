@@ -1,67 +1,16 @@
-// Seeded random region edits for `voxray check --edits` and the bouncing balls of
-// `voxray bench --edits spheres`; and the same edits applied voxel by voxel to a plain
-// voxel_model, which is the reference they are checked against.
+// Editing helpers of the tool: the seeded random edits and their voxel-by-voxel reference
+// come from voxray/check/random_edits.hpp; here, what an edit writes (for the rates of
+// `voxray bench --edits`).
 #pragma once
 #include <cstdint>
 #include <variant>
 #include <vector>
 
-#include "voxray/check/ray_sets.hpp"
+#include "voxray/check/random_edits.hpp"
 #include "voxray/edit/region_edit.hpp"
 #include "voxray/model/voxel_model.hpp"
 
 namespace voxray::tool {
-
-// Spheres, boxes and lines (capsules), each to fill, erase or paint, inside `world`.
-inline std::vector<region_edit> random_edits(const box3i& world, int count, std::uint64_t seed) {
-    rng g(seed);
-    glm::ivec3 size = glm::max(world.extent(), glm::ivec3(1));
-    int reach = std::max(2, std::min({size.x, size.y, size.z}) / 4);
-    auto point = [&] {
-        return world.min + glm::ivec3(g.below(size.x), g.below(size.y), g.below(size.z));
-    };
-    std::vector<region_edit> edits;
-    for (int i = 0; i < count; ++i) {
-        region_edit e;
-        e.op = static_cast<edit_op>(g.below(3));
-        e.value = std::uint32_t(1 + g.below(255));
-        glm::ivec3 a = point();
-        switch (g.below(3)) {
-        case 0: e.region = regions::sphere{a, 1 + g.below(reach)}; break;
-        case 1: {
-            glm::ivec3 extent(1 + g.below(reach), 1 + g.below(reach), 1 + g.below(reach));
-            e.region = regions::box{{a, glm::min(a + extent, world.max)}};
-            break;
-        }
-        default: e.region = regions::capsule{a, point(), g.below(3)}; break;
-        }
-        edits.push_back(e);
-    }
-    return edits;
-}
-
-// The reference: every voxel of the region inside `world`, one set() at a time.
-inline std::uint64_t apply_to_model(voxel_model& model, const region_edit& e, const box3i& world) {
-    std::uint64_t writes = 0;
-    std::visit(
-        [&](const auto& region) {
-            box3i b = region.bounds();
-            b.min = glm::max(b.min, world.min);
-            b.max = glm::min(b.max, world.max);
-            for (int z = b.min.z; z < b.max.z; ++z)
-                for (int y = b.min.y; y < b.max.y; ++y)
-                    for (int x = b.min.x; x < b.max.x; ++x) {
-                        glm::ivec3 p(x, y, z);
-                        if (!region.contains(p)) continue;
-                        ++writes;
-                        if (e.op == edit_op::fill) model.set(p, std::uint8_t(e.value));
-                        else if (e.op == edit_op::erase) model.set(p, 0);
-                        else if (model.get(p)) model.set(p, std::uint8_t(e.value));
-                    }
-        },
-        e.region);
-    return writes;
-}
 
 // Voxels of a region inside `world` (what an edit writes).
 template <class Region>

@@ -8,7 +8,7 @@
 #include <variant>
 
 #include "fixture.hpp"
-#include "random_edits.hpp"
+#include "voxray/check/random_edits.hpp"
 #include "random_models.hpp"
 #include "special_rays.hpp"
 

@@ -28,12 +28,6 @@
 
 #define vx_sel(m, a, b) ((m) ? (a) : (b))
 
-#if defined(VX_DIALECT_GLSL)
-#define VX_UNUSED(x)
-#else
-#define VX_UNUSED(x) (void)(x)
-#endif
-
 #if defined(VX_DIALECT_OPENCL)
 #pragma OPENCL FP_CONTRACT OFF
 #define VX_FN static inline

@@ -1,6 +1,6 @@
 // Seeded random region edits (spheres, boxes, capsules; fill, erase, paint) and the same
 // edits applied voxel by voxel to a plain voxel_model: the reference an edited structure
-// is checked against. Regions decide membership in exact integers (edit/regions.hpp), so
+// is checked against, by `voxray check --edits` and by the conformance tests. Regions decide membership in exact integers (edit/regions.hpp), so
 // the reference and the structure agree voxel for voxel.
 #pragma once
 #include <algorithm>
@@ -12,7 +12,7 @@
 #include "voxray/edit/region_edit.hpp"
 #include "voxray/model/voxel_model.hpp"
 
-namespace voxray::test {
+namespace voxray {
 
 // `count` edits inside `area`, each region up to a quarter of its smallest side.
 inline std::vector<region_edit> random_edits(const box3i& area, int count, std::uint64_t seed) {
@@ -42,7 +42,9 @@ inline std::vector<region_edit> random_edits(const box3i& area, int count, std::
 
 // Edit e on every voxel of its region inside `world` (a structure never sets voxels
 // outside its world box).
-inline void apply_to_model(voxel_model& model, const region_edit& e, const box3i& world) {
+// Returns the voxels written.
+inline std::uint64_t apply_to_model(voxel_model& model, const region_edit& e, const box3i& world) {
+    std::uint64_t writes = 0;
     std::visit(
         [&](const auto& region) {
             box3i b = region.bounds();
@@ -53,12 +55,14 @@ inline void apply_to_model(voxel_model& model, const region_edit& e, const box3i
                     for (int x = b.min.x; x < b.max.x; ++x) {
                         glm::ivec3 p(x, y, z);
                         if (!region.contains(p)) continue;
+                        ++writes;
                         if (e.op == edit_op::fill) model.set(p, std::uint8_t(e.value));
                         else if (e.op == edit_op::erase) model.set(p, 0);
                         else if (model.get(p)) model.set(p, std::uint8_t(e.value));
                     }
         },
         e.region);
+    return writes;
 }
 
-}  // namespace voxray::test
+}  // namespace voxray
