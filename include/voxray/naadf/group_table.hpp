@@ -5,9 +5,12 @@
 // it finds the group or a free slot, so it never gives up and never hands out another
 // group (the reference falls back to a garbage block when its probe limit runs out).
 #pragma once
+#include <algorithm>
 #include <array>
+#include <bit>
+#include <cstring>
+#include <memory>
 #include <cstdint>
-#include <span>
 #include <vector>
 
 #include "voxray/core/error.hpp"
@@ -40,13 +43,14 @@ public:
     std::uint32_t intern(const voxel_group& g) {
         std::uint32_t h = group_hash(g);
         std::size_t mask = slots_.size() - 1;
-        for (std::size_t i = h & mask;; i = (i + 1) & mask) {
+        for (std::size_t i = home(h, slots_.size());; i = (i + 1) & mask) {
             std::uint32_t index = slots_[i];
             if (index == free_slot) {
                 if (hashes_.size() > VX_NA_MAX_INDEX)
                     fail("naadf: more than ", VX_NA_MAX_INDEX, " distinct voxel groups (30-bit group index)");
                 index = std::uint32_t(hashes_.size());
-                words_.insert(words_.end(), g.begin(), g.end());
+                if (index % segment_groups == 0) segments_.push_back(std::make_unique_for_overwrite<voxel_group[]>(segment_groups));
+                segments_.back()[index % segment_groups] = g;
                 hashes_.push_back(h);
                 slots_[i] = index;
                 if (4 * hashes_.size() > 3 * slots_.size()) grow();
@@ -57,23 +61,39 @@ public:
     }
 
     std::size_t size() const { return hashes_.size(); }
-    std::span<const std::uint32_t> words() const { return words_; }
+    const voxel_group& group(std::uint32_t index) const { return segments_[index / segment_groups][index % segment_groups]; }
+
+    // Copies every group, in index order, to `out` (size() * 32 words).
+    void copy_to(std::uint32_t* out) const {
+        for (std::size_t n = 0; n < size(); n += segment_groups) {
+            std::size_t count = std::min<std::size_t>(segment_groups, size() - n);
+            std::memcpy(out + n * VX_NA_GROUP_WORDS, segments_[n / segment_groups].get(), count * sizeof(voxel_group));
+        }
+    }
 
 private:
     static constexpr std::uint32_t free_slot = 0xFFFFFFFFu;
+    // Groups live in fixed segments, so a new one never moves the others (no copying and
+    // no second round of page faults as the table grows).
+    static constexpr std::size_t segment_groups = 4096;
+
+    // The slot a hash starts probing at: the polynomial hash's low bits follow the voxel
+    // types' low bits only, so they are spread (Fibonacci hashing: the top bits of h times
+    // 2^32 / golden ratio) before they pick one of `slots` (a power of two).
+    static std::size_t home(std::uint32_t h, std::size_t slots) {
+        std::uint64_t spread = std::uint64_t(h * 0x9E3779B9u) << 32;
+        return std::size_t(spread >> (64 - std::countr_zero(slots)));
+    }
 
     bool same(std::uint32_t index, const voxel_group& g) const {
-        const std::uint32_t* w = words_.data() + std::size_t(index) * VX_NA_GROUP_WORDS;
-        for (int i = 0; i < VX_NA_GROUP_WORDS; ++i)
-            if (w[i] != g[i]) return false;
-        return true;
+        return group(index) == g;
     }
 
     void grow() {
         std::vector<std::uint32_t> slots(slots_.size() * 2, free_slot);
         std::size_t mask = slots.size() - 1;
         for (std::uint32_t index = 0; index < hashes_.size(); ++index) {
-            std::size_t i = hashes_[index] & mask;
+            std::size_t i = home(hashes_[index], slots.size());
             while (slots[i] != free_slot) i = (i + 1) & mask;
             slots[i] = index;
         }
@@ -82,7 +102,7 @@ private:
 
     std::vector<std::uint32_t> slots_;   // group index, or free_slot
     std::vector<std::uint32_t> hashes_;  // per group, to re-slot on growth without rehashing
-    std::vector<std::uint32_t> words_;   // the groups, 32 words each: the blob's voxel area
+    std::vector<std::unique_ptr<voxel_group[]>> segments_;
 };
 
 }  // namespace voxray::naadf_detail

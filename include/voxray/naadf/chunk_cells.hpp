@@ -1,0 +1,100 @@
+// The cells of one model chunk (NAADF paper, section 3.2): its 64 blocks, each empty
+// (with its AADF inside the chunk), uniform, or mixed with a group of 64 voxels; a chunk
+// whose blocks are all uniform with one type collapses. Groups hold types only here; the
+// empty voxels' fields are written once per distinct group, after deduplication
+// (add_group_fields), since they follow from the types.
+#pragma once
+#include <array>
+#include <cstdint>
+#include <cstring>
+#include <vector>
+
+#include "voxray/model/build_threads.hpp"
+#include "voxray/model/voxel_model.hpp"
+#include "voxray/naadf/aadf.hpp"
+#include "voxray/naadf/group_table.hpp"
+#include "voxray/naadf/layout.h"
+
+namespace voxray::naadf_detail {
+
+// One model chunk as NAADF cells, before its groups are interned.
+struct built_chunk {
+    std::uint32_t cell = 0;                  // uniform, or mixed (index filled in later)
+    std::array<std::uint32_t, 64> blocks{};  // mixed blocks hold their local group number
+    std::vector<voxel_group> groups;
+};
+
+// Model-chunk offset of voxel i (x | y << 2 | z << 4) of a block, from the block's base.
+inline const std::array<std::uint16_t, 64>& block_offsets() {
+    static const std::array<std::uint16_t, 64> offsets = [] {
+        std::array<std::uint16_t, 64> o{};
+        for (int i = 0; i < 64; ++i) o[i] = std::uint16_t(voxel_model::local_index({i & 3, (i >> 2) & 3, i >> 4}));
+        return o;
+    }();
+    return offsets;
+}
+
+// The cells of model chunk c; with `fields`, the empty blocks' AADFs too.
+inline void build_chunk(const voxel_model::chunk& c, bool fields, built_chunk& out) {
+    const auto& offsets = block_offsets();
+    out.groups.clear();
+    std::uint64_t solid_blocks = 0;
+    bool uniform = true;
+    for (int b = 0; b < 64; ++b) {
+        const std::uint8_t* base = c.voxels.data() + voxel_model::local_index(glm::ivec3(b & 3, (b >> 2) & 3, b >> 4) * 4);
+        // A block is 16 rows of 4 bytes: empty and uniform blocks are told apart from them.
+        std::uint32_t any = 0, differs = 0, first = std::uint32_t(base[0]) * 0x01010101u;
+        for (int row = 0; row < 16; ++row) {
+            std::uint32_t r;
+            std::memcpy(&r, base + (row & 3) * voxel_model::chunk_edge + (row >> 2) * voxel_model::chunk_edge * voxel_model::chunk_edge, 4);
+            any |= r;
+            differs |= r ^ first;
+        }
+        if (any == 0) {
+            uniform = false;
+            out.blocks[b] = 0;
+            continue;
+        }
+        bool same = differs == 0;
+        solid_blocks |= std::uint64_t(1) << b;
+        std::uint32_t cell;
+        if (same) {
+            cell = VX_NA_UNIFORM_CELL(std::uint32_t(base[0]));
+        } else {
+            voxel_group g{};
+            for (int i = 0; i < 64; ++i)
+                if (std::uint32_t t = base[offsets[i]]) g[VX_NA_VOXEL_WORD(i)] |= VX_NA_SOLID_VOXEL(t) << VX_NA_VOXEL_SHIFT(i);
+            cell = VX_NA_MIXED_CELL(std::uint32_t(out.groups.size()));
+            out.groups.push_back(g);
+        }
+        uniform = uniform && VX_NA_STATE(cell) == VX_NA_UNIFORM && (b == 0 || cell == out.blocks[0]);
+        out.blocks[b] = cell;
+    }
+    if (uniform) {
+        out.cell = out.blocks[0];
+        return;
+    }
+    if (fields) {
+        auto aadfs = grid4_aadfs(solid_blocks, VX_NA_BLOCK_AADF_BITS);
+        for (int b = 0; b < 64; ++b)
+            if (!((solid_blocks >> b) & 1u)) out.blocks[b] = aadfs[b];
+    }
+    out.cell = VX_NA_MIXED_CELL(0);
+}
+
+// Writes the distance fields of the empty voxels of `count` groups (type-only until now).
+inline void add_group_fields(std::uint32_t* words, std::size_t count, unsigned requested_threads) {
+    unsigned threads = resolve_build_threads(requested_threads, count / 256);
+    run_build_threads(threads, [&](unsigned id) {
+        for (std::size_t n = id; n < count; n += threads) {
+            std::uint32_t* g = words + n * VX_NA_GROUP_WORDS;
+            std::uint64_t solid = 0;
+            for (int i = 0; i < 64; ++i)
+                solid |= std::uint64_t((g[VX_NA_VOXEL_WORD(i)] >> VX_NA_VOXEL_SHIFT(i)) & VX_NA_VOXEL_SOLID ? 1 : 0) << i;
+            auto aadfs = grid4_aadfs(solid, VX_NA_VOXEL_AADF_BITS);
+            for (int i = 0; i < 64; ++i) g[VX_NA_VOXEL_WORD(i)] |= aadfs[i] << VX_NA_VOXEL_SHIFT(i);
+        }
+    });
+}
+
+}  // namespace voxray::naadf_detail
