@@ -74,6 +74,28 @@ TYPED_TEST_P(agreement_suite, extreme_directions_agree_with_the_reference) {
     this->expect_agrees_with_reference("denormal components", model, denormal);
 }
 
+// Origins up to 3e38 and components at the edges of the minimum-direction rule: the same
+// hits as the reference, and every hit one a float can express (finite t, a solid voxel).
+TYPED_TEST_P(agreement_suite, far_origins_and_tiny_components_agree_with_the_reference) {
+    box3i b{{-8, -8, -8}, {8, 8, 8}};
+    voxel_model model = random_sparse(b, 800, 53);
+    auto rays = far_rays(b, 30000, 59);
+    this->expect_agrees_with_reference("far origins, tiny components", model, rays);
+    typename TestFixture::structure s(model);
+    typename TestFixture::tracer_type t(s);
+    std::size_t hits = 0;
+    for (mode m : {mode::closest, mode::any}) {
+        auto got = trace(t, rays, m);
+        for (std::size_t i = 0; i < rays.size(); ++i) {
+            if (!got[i].is_hit()) continue;
+            ++hits;
+            ASSERT_TRUE(std::isfinite(got[i].t)) << "ray " << i << " hits at t = " << got[i].t;
+            ASSERT_NE(model.get(got[i].voxel), 0) << "ray " << i << " hits an empty voxel";
+        }
+    }
+    EXPECT_GT(hits, rays.size() / 50) << "too few hits to mean much";
+}
+
 // The same structure on cpu_scalar (one thread) gives the same hit records, t, voxel,
 // face, material, steps and status, on every model and ray set, in both modes.
 TYPED_TEST_P(agreement_suite, bit_identical_to_cpu_scalar) {
@@ -90,6 +112,8 @@ TYPED_TEST_P(agreement_suite, bit_identical_to_cpu_scalar) {
         }
         auto grazing = grazing_rays(b, 4000, seed++);
         rays.insert(rays.end(), grazing.begin(), grazing.end());
+        auto far = far_rays(b, 3000, seed++);
+        rays.insert(rays.end(), far.begin(), far.end());
         auto invalid = invalid_rays(glm::vec3(b.min) - 3.0f, glm::vec3(b.min + b.max) * 0.5f);
         rays.insert(rays.end(), invalid.begin(), invalid.end());
         std::size_t hits = this->expect_bit_identical(name, t, s, rays);
@@ -152,6 +176,7 @@ TYPED_TEST_P(agreement_suite, shared_scenes_agree_with_the_reference) {
 
 REGISTER_TYPED_TEST_SUITE_P(agreement_suite, random_models_agree_with_the_oracle, lattice_rays_agree_with_the_oracle,
                             grazing_rays_agree_with_the_oracle, extreme_directions_agree_with_the_reference,
+                            far_origins_and_tiny_components_agree_with_the_reference,
                             bit_identical_to_cpu_scalar, odd_batch_sizes_are_bit_identical,
                             builtin_scenes_agree_with_the_reference, shared_scenes_agree_with_the_reference);
 

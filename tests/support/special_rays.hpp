@@ -76,6 +76,32 @@ inline std::vector<ray> extreme_rays(box3i b, std::span<const float> components,
     return rays;
 }
 
+// Rays from far away (origins up to 3e38) with components at the edges of the DDA's
+// rules: just below and just above VX_MIN_DIRECTION (2^-120, about 7.5e-37, under which a
+// component counts as zero), 1e-38, 1e-30, and ordinary ones; half of them aimed at a point
+// of box b. Crossing t then overflows float for many, which must give a miss, never a
+// hit at t = inf; and a component that counts as zero must not move the walk at all.
+inline std::vector<ray> far_rays(box3i b, std::size_t count, std::uint64_t seed) {
+    static constexpr float far[] = {1e30f, -1e30f, 1e20f, -1e20f, 1e7f, -1e7f, 3e38f, -3e38f};
+    static constexpr float tiny[] = {1e-38f, -1e-38f, 7.523e-37f, -7.523e-37f, 7.53e-37f, -7.53e-37f,
+                                     1e-30f, -1e-30f, 0.0f, 1.0f, -1.0f};
+    std::vector<ray> rays;
+    rng g(seed);
+    for (std::size_t i = 0; i < count; ++i) {
+        ray r;
+        glm::vec3 target;
+        for (int a = 0; a < 3; ++a) {
+            float lo = float(b.min[a]), hi = float(b.max[a]);
+            target[a] = g.uniform(lo, hi);
+            r.origin[a] = g.below(2) ? far[g.below(8)] : g.uniform(lo - 4.0f, hi + 4.0f);
+            r.direction[a] = tiny[g.below(11)];
+        }
+        if (g.below(2)) r.direction = target - r.origin;
+        rays.push_back(r);
+    }
+    return rays;
+}
+
 inline constexpr float huge_and_tiny_components[] = {0.0f, -0.0f, 1e-30f, -1e-30f, 1.0f, -1.0f, 3e38f, -3e38f};
 // Denormals (|d| < 2^-126: 1/d overflows) must act as zero in every DDA.
 inline constexpr float denormal_components[] = {0.0f, -0.0f, 1e-40f, -1e-40f, -1e-38f, 1.0f, -1.0f};

@@ -8,7 +8,9 @@
  *  - axes with a zero direction never step (their crossing t is +inf) and no division by
  *    zero reaches a result: GLSL leaves x/0 undefined;
  *  - rays with NaN/Inf in origin, direction or tmin, NaN tmax, a zero (or denormal) direction or
- *    tmin > tmax are misses. tmax = +inf is fine.
+ *    tmin > tmax are misses. tmax = +inf is fine;
+ *  - a walk whose entry or next crossing t overflows float (far origins, tiny components)
+ *    misses: t = inf cannot say where a hit is, and every crossing would tie at inf.
  * Axes that reach a boundary at the same t step together (see vx_dda_advance).
  * Per-lane code has no branches: it runs unchanged on SIMD lanes. */
 
@@ -93,7 +95,9 @@ VX_FN vx_dda vx_dda_begin_scaled(vx_ray r, float gx, float gy, float gz, int ex,
     vx_f32 tbox = vx_fmax(sx.t0, vx_fmax(sy.t0, sz.t0));
     vx_f32 tenter = vx_fmax(r.tmin, tbox);
     vx_f32 texit = vx_fmin(r.tmax, vx_fmin(sx.t1, vx_fmin(sy.t1, sz.t1)));
-    valid = valid && tenter <= texit;
+    /* An entry beyond the float range (a far origin, a tiny direction) is no hit: t = inf
+     * cannot say where, and the walk could not order its crossings. */
+    valid = valid && tenter <= texit && vx_is_finite(tenter);
 
     /* Entered through a box face (not started inside): which one, x before y before z. */
     vx_mask through_face = tbox >= r.tmin;
@@ -101,10 +105,12 @@ VX_FN vx_dda vx_dda_begin_scaled(vx_ray r, float gx, float gy, float gz, int ex,
     vx_mask ay = through_face && !ax && sy.t0 == tbox;
     vx_mask az = through_face && !ax && !ay;
 
+    /* The entry point; a component that counts as zero is zero here too (the slab test
+     * above already treats it so), or a huge t would carry the point off its cell. */
     vx_f32 tp = vx_sel(valid, tenter, 0.0f);
-    vx_f32 px = vx_sel(valid, d.ox + r.dx * to_cells * tp, 0.0f);
-    vx_f32 py = vx_sel(valid, d.oy + r.dy * to_cells * tp, 0.0f);
-    vx_f32 pz = vx_sel(valid, d.oz + r.dz * to_cells * tp, 0.0f);
+    vx_f32 px = vx_sel(valid, d.ox + vx_sel(sx.step != 0, r.dx, 0.0f) * to_cells * tp, 0.0f);
+    vx_f32 py = vx_sel(valid, d.oy + vx_sel(sy.step != 0, r.dy, 0.0f) * to_cells * tp, 0.0f);
+    vx_f32 pz = vx_sel(valid, d.oz + vx_sel(sz.step != 0, r.dz, 0.0f) * to_cells * tp, 0.0f);
     /* A ray whose span in the box has zero length (it starts on the box's far side, or only
      * touches an edge or corner) meets a voxel only if that point lies in one: cells are
      * half-open, so a point on a max face lies outside. Off the entry axis the point must
@@ -151,7 +157,8 @@ VX_FN vx_dda vx_dda_move_sized(vx_dda d, vx_mask go, vx_i32 size) {
     d.face = vx_sel(mx, vx_sel(d.sx > 0, VX_FACE_NEG_X, VX_FACE_POS_X),
              vx_sel(my, vx_sel(d.sy > 0, VX_FACE_NEG_Y, VX_FACE_POS_Y),
              vx_sel(mz, vx_sel(d.sz > 0, VX_FACE_NEG_Z, VX_FACE_POS_Z), d.face)));
-    d.status = vx_sel(go && tnext > d.tmax, VX_STATUS_MISS, d.status);
+    /* Past tmax, or past the float range (every crossing then ties at inf), is a miss. */
+    d.status = vx_sel(go && (tnext > d.tmax || !vx_is_finite(tnext)), VX_STATUS_MISS, d.status);
     d.t = vx_sel(go, vx_fmax(d.t, tnext), d.t);
     d.steps = d.steps + vx_sel(go, 1u, 0u);
     return d;
@@ -209,9 +216,10 @@ VX_FN vx_dda vx_dda_reenter(vx_dda d, vx_f32 dx, vx_f32 dy, vx_f32 dz, vx_i32 si
     vx_f32 t = vx_sel(m, d.t, 0.0f);
     vx_i32 n = vx_sel(m, size / sub, 1);
     vx_mask start = d.steps == 0u; /* still in the cell vx_dda_begin_scaled chose */
-    vx_i32 lx = vx_dda_reenter_axis(d.ox, vx_sel(m, dx, 0.0f), d.ix, d.sx, t, d.cx, sub, n, start);
-    vx_i32 ly = vx_dda_reenter_axis(d.oy, vx_sel(m, dy, 0.0f), d.iy, d.sy, t, d.cy, sub, n, start);
-    vx_i32 lz = vx_dda_reenter_axis(d.oz, vx_sel(m, dz, 0.0f), d.iz, d.sz, t, d.cz, sub, n, start);
+    /* A component that counts as zero (vx_moves) moves nothing, even over a huge t. */
+    vx_i32 lx = vx_dda_reenter_axis(d.ox, vx_sel(m && d.sx != 0, dx, 0.0f), d.ix, d.sx, t, d.cx, sub, n, start);
+    vx_i32 ly = vx_dda_reenter_axis(d.oy, vx_sel(m && d.sy != 0, dy, 0.0f), d.iy, d.sy, t, d.cy, sub, n, start);
+    vx_i32 lz = vx_dda_reenter_axis(d.oz, vx_sel(m && d.sz != 0, dz, 0.0f), d.iz, d.sz, t, d.cz, sub, n, start);
     vx_mask fx = m && !start && d.sx != 0 && vx_dda_entry_t(d.cx, lx, sub, d.sx, d.ox, d.ix) == t;
     vx_mask fy = m && !start && d.sy != 0 && vx_dda_entry_t(d.cy, ly, sub, d.sy, d.oy, d.iy) == t;
     vx_mask fz = m && !start && d.sz != 0 && vx_dda_entry_t(d.cz, lz, sub, d.sz, d.oz, d.iz) == t;
@@ -258,9 +266,10 @@ VX_FN vx_dda vx_dda_leave_box(vx_dda d, vx_f32 dx, vx_f32 dy, vx_f32 dz, vx_i32 
     vx_mask mx = m && ex == texit, my = m && ey == texit, mz = m && ez == texit;
     vx_f32 t = vx_sel(m, texit, 0.0f);
     vx_i32 fx = d.cx, fy = d.cy, fz = d.cz;
-    d.cx = vx_sel(m, vx_dda_leave_axis(mx, lox, hix, d.sx, d.ox, dx, d.ix, t), d.cx);
-    d.cy = vx_sel(m, vx_dda_leave_axis(my, loy, hiy, d.sy, d.oy, dy, d.iy, t), d.cy);
-    d.cz = vx_sel(m, vx_dda_leave_axis(mz, loz, hiz, d.sz, d.oz, dz, d.iz, t), d.cz);
+    /* A component that counts as zero (vx_moves) moves nothing, even over a huge t. */
+    d.cx = vx_sel(m, vx_dda_leave_axis(mx, lox, hix, d.sx, d.ox, vx_sel(d.sx != 0, dx, 0.0f), d.ix, t), d.cx);
+    d.cy = vx_sel(m, vx_dda_leave_axis(my, loy, hiy, d.sy, d.oy, vx_sel(d.sy != 0, dy, 0.0f), d.iy, t), d.cy);
+    d.cz = vx_sel(m, vx_dda_leave_axis(mz, loz, hiz, d.sz, d.oz, vx_sel(d.sz != 0, dz, 0.0f), d.iz, t), d.cz);
     /* Interior planes crossed at the exit t step too, and may name the face. */
     mx = m && (mx || vx_dda_stepped_at(d.cx, fx, d.sx, d.ox, d.ix, t));
     my = m && (my || vx_dda_stepped_at(d.cy, fy, d.sy, d.oy, d.iy, t));
@@ -271,7 +280,7 @@ VX_FN vx_dda vx_dda_leave_box(vx_dda d, vx_f32 dx, vx_f32 dy, vx_f32 dz, vx_i32 
     d.face = vx_sel(mx, vx_sel(d.sx > 0, VX_FACE_NEG_X, VX_FACE_POS_X),
              vx_sel(my, vx_sel(d.sy > 0, VX_FACE_NEG_Y, VX_FACE_POS_Y),
              vx_sel(mz, vx_sel(d.sz > 0, VX_FACE_NEG_Z, VX_FACE_POS_Z), d.face)));
-    d.status = vx_sel(m && texit > d.tmax, VX_STATUS_MISS, d.status);
+    d.status = vx_sel(m && (texit > d.tmax || !vx_is_finite(texit)), VX_STATUS_MISS, d.status);
     d.t = vx_sel(m, vx_fmax(d.t, texit), d.t);
     d.steps = d.steps + vx_sel(m, 1u, 0u);
     return d;

@@ -16,6 +16,7 @@
  *    inout, a pointer in OpenCL C, which has no references);
  *  - kernel states hold per-lane fields only: the CPU stream merges them lane by lane
  *    generically (vx_select_state_into in kernels/cpu_simd_lanes.inc), so no kernel writes a select;
+ *  - an entry point's parameter that one structure does not need is marked VX_UNUSED(p);
  *  - a structure kernel `s` names its entry points vx_<s>_load, _begin, _step, _finish,
  *    _status and _trace; `mode` arguments are VX_MODE_* constants at every call site.
  * In C++ the helpers are functions defined per lane namespace (cpu_lanes.hpp); here they
@@ -48,6 +49,7 @@ typedef bool vx_mask;
 #define VX_INOUT(T) T*
 #define VX_REF(p) (*(p))
 #define VX_ADDR(x) (&(x))
+#define VX_UNUSED(x) ((void)(x))
 #define vx_i2f(x) convert_float(x)
 #define vx_u2f(x) convert_float(x)
 #define vx_f2i(x) convert_int(x)
@@ -81,6 +83,7 @@ static inline float vx_fmax(float a, float b) { return a > b ? a : b; }
 #define VX_INOUT(T) inout T
 #define VX_REF(p) (p)
 #define VX_ADDR(x) (x)
+#define VX_UNUSED(x)
 #define vx_i2f(x) float(x)
 #define vx_u2f(x) float(x)
 #define vx_f2i(x) int(x)
@@ -110,6 +113,7 @@ layout(buffer_reference, std430, buffer_reference_align = 4) readonly buffer vx_
 #define VX_INOUT(T) T&
 #define VX_REF(p) (p)
 #define VX_ADDR(x) (x)
+#define VX_UNUSED(x) ((void)(x))
 #endif
 
 /* A float is finite when its exponent bits are not all ones (works without isfinite,

@@ -20,6 +20,7 @@ VX_END_STRUCT(vx_naadf)
 VX_STRUCT(vx_na_state)
     vx_dda w;             /* the walk over voxels */
     vx_f32 dx, dy, dz;    /* direction, for the exact exit of a cuboid */
+    vx_u32 type;          /* the hit cell's type, kept so finishing needs no second lookup */
 VX_END_STRUCT(vx_na_state)
 
 /* The cell a voxel lies in at the highest layer that is not mixed. */
@@ -80,6 +81,7 @@ VX_FN vx_na_state vx_naadf_begin(vx_naadf g, vx_ray r) {
     vx_na_state s;
     s.w = vx_dda_begin_scaled(r, vx_i2f(g.ox), vx_i2f(g.oy), vx_i2f(g.oz), g.ex, g.ey, g.ez, 1.0f);
     s.dx = r.dx; s.dy = r.dy; s.dz = r.dz;
+    s.type = vx_u32_splat(0u);
     return s;
 }
 
@@ -91,6 +93,7 @@ VX_FN vx_na_state vx_naadf_step(VX_BLOB blob, vx_naadf g, vx_na_state s) {
     vx_i32 gx = s.w.cx + g.shx, gy = s.w.cy + g.shy, gz = s.w.cz + g.shz;
     vx_na_cell c = vx_na_lookup(blob, g, gx, gy, gz, live);
     s.w.status = vx_sel(c.solid, VX_STATUS_HIT, s.w.status);
+    s.type = vx_sel(c.solid, c.value & VX_NA_TYPE_MASK, s.type);
 
     vx_mask go = live && !c.solid;
     vx_u32 k = vx_sel(c.level >= VX_NA_CHUNK_BITS, vx_u32_splat(VX_NA_CHUNK_AADF_BITS), vx_u32_splat(VX_NA_BLOCK_AADF_BITS));
@@ -112,21 +115,18 @@ VX_FN vx_na_state vx_naadf_step(VX_BLOB blob, vx_naadf g, vx_na_state s) {
 
 VX_FN vx_u32 vx_naadf_status(vx_na_state s) { return s.w.status; }
 
-/* The hit record; closest hits look the hit voxel's type up again (any-hit reads none). */
+/* The hit record; the type was kept at the hit step (any-hit reports none, like the
+ * other structures). */
 VX_FN vx_hit vx_naadf_finish(VX_BLOB blob, vx_naadf g, vx_na_state s, uint mode) {
     vx_hit h;
     vx_mask is_hit = s.w.status == VX_STATUS_HIT;
-    vx_u32 type = vx_u32_splat(0u);
-    if (mode == VX_MODE_CLOSEST) {
-        vx_na_cell c = vx_na_lookup(blob, g, s.w.cx + g.shx, s.w.cy + g.shy, s.w.cz + g.shz, is_hit);
-        type = vx_sel(is_hit, c.value & VX_NA_TYPE_MASK, 0u);
-    }
+    VX_UNUSED(blob);
     h.t = vx_sel(is_hit, s.w.t, VX_INF);
     h.x = vx_sel(is_hit, s.w.cx + g.ox, 0);
     h.y = vx_sel(is_hit, s.w.cy + g.oy, 0);
     h.z = vx_sel(is_hit, s.w.cz + g.oz, 0);
     h.face = vx_sel(is_hit, s.w.face, VX_FACE_NONE);
-    h.material = type;
+    h.material = vx_sel(is_hit && mode == VX_MODE_CLOSEST, s.type, 0u);
     h.steps = s.w.steps;
     h.status = s.w.status;
     return h;
