@@ -138,6 +138,30 @@ TYPED_TEST_P(edge_cases, far_away_origin_and_infinite_tmax) {
     EXPECT_NEAR(h.t, 60100.0f, 0.01f);
 }
 
+// The rules for extremes (README, semantics): a ray whose crossing t overflows float
+// misses (it used to hit the world's min corner at t = inf on every structure), and a
+// component under VX_MIN_DIRECTION moves nothing, also over a t of 1e37 (the brickmap's
+// descent used to move z by -0.19 there and hit a voxel one row down).
+TYPED_TEST_P(edge_cases, overflowing_t_misses_and_tiny_components_stay_put) {
+    voxel_model m;
+    m.set({0, 17, 5}, 1);
+    m.set({-3, 17, 5}, 2);
+    m.set({22, 25, -1}, 3);
+    m.set({30, 25, 0}, 4);
+    typename TestFixture::structure s(m);
+    typename TestFixture::tracer_type t(s);
+    float threshold = 7.52316385e-37f;  // VX_MIN_DIRECTION: x moves, z does not
+    std::vector<ray> rays{make_ray({1e30f, 17.5f, 5.5f}, {-1e-30f, 0, 0}),
+                          make_ray({8.0f, 25.0f, 1e-30f}, {threshold, 0, -1e-38f})};
+    for (mode md : {mode::closest, mode::any}) {
+        auto hits = trace(t, rays, md);
+        EXPECT_FALSE(hits[0].is_hit()) << mode_name(md) << ": hit " << hits[0].voxel.x << " at t = " << hits[0].t;
+        ASSERT_TRUE(hits[1].is_hit()) << mode_name(md);
+        EXPECT_EQ(hits[1].voxel, glm::ivec3(30, 25, 0)) << mode_name(md);
+        EXPECT_TRUE(std::isfinite(hits[1].t));
+    }
+}
+
 // A world 65001 voxels wide (a 4064^2 chunk table for the dense grid), at positive and
 // at negative coordinates.
 TYPED_TEST_P(edge_cases, coordinates_near_65000) {
@@ -177,6 +201,7 @@ TYPED_TEST_P(edge_cases, empty_model_misses) {
 REGISTER_TYPED_TEST_SUITE_P(edge_cases, hits_every_face_with_the_right_normal, start_inside_solid_hits_at_tmin,
                             clipped_by_tmin_and_tmax, negative_and_zero_components, rays_along_face_planes_and_edges,
                             crossing_an_edge_skips_voxels_it_only_touches, invalid_rays_miss,
-                            far_away_origin_and_infinite_tmax, coordinates_near_65000, empty_model_misses);
+                            far_away_origin_and_infinite_tmax, overflowing_t_misses_and_tiny_components_stay_put,
+                            coordinates_near_65000, empty_model_misses);
 
 }  // namespace voxray::test
