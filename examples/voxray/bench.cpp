@@ -147,13 +147,15 @@ void print_row(const nlohmann::json& r) {
                     r["ray_set"].get<std::string>().c_str(), r["error"].get<std::string>().c_str());
         return;
     }
+    auto limited = r["limitation_rays"].get<std::uint64_t>();
+    std::string label = limited ? "  (+" + std::to_string(limited) + " labelled: " + r["limitation"].get<std::string>() + ")" : "";
     std::printf("%-22s %-14s %-11s %-10s %9.2f %9.2f %9.2f %9.2f %9.2f %10llu%s\n", r["scene"].get<std::string>().c_str(),
                 r["structure"].get<std::string>().c_str(), r["backend"].get<std::string>().c_str(),
                 r["ray_set"].get<std::string>().c_str(), r["mrays_median"].get<double>(), r["mrays_min"].get<double>(),
                 r["mrays_max"].get<double>(), r["steps_per_ray"].get<double>(),
                 r["bytes_per_voxel"].is_number() ? r["bytes_per_voxel"].get<double>() : 0.0,
                 (unsigned long long)r["mismatches"].get<std::uint64_t>(),
-                r["limitation_rays"].get<std::uint64_t>() ? "  (+ rays outside a known limitation)" : "");
+                label.c_str());
     std::fflush(stdout);
 }
 
