@@ -114,29 +114,43 @@ def plot_steps(rows, out):
 
 
 def table(header, rows, errors):
+    """One line per scene x structure x backend, one Mrays/s column per ray set."""
     m = header["machine"]
+    sets = ordered(r["ray_set"] for r in rows)
     lines = [
         f'Results of `{header["command"]}` at commit `{header["git_commit"][:12]}` ({header["started_utc"]}), '
         f'{m["cpu_model"]}, {m["cores"]} cores, {m["clock_hz"] / 1e9:.2f} GHz, {m["simd_width"]}-lane CPU stream, '
-        f'{header["compiler"]}, {header["build_type"]}. Mrays/s: median (min-max) of the timed runs; '
-        "mismatches against the dense grid on the CPU, counted while measuring.",
+        f'{header["compiler"]}, {header["build_type"]}. Mrays/s: median (min-max) of the timed runs; steps per ray '
+        f'and cycles per ray-step for {sets[0]} rays; mismatches against the dense grid on the CPU over all ray '
+        "sets, counted while measuring.",
         "",
-        "| scene | voxels | structure | backend | rays | W x H | Mrays/s | steps/ray | cycles/step | bytes/voxel | build s | mismatches |",
-        "|---|---:|---|---|---|---|---:|---:|---:|---:|---:|---:|",
+        "| scene | voxels | structure | backend | " + " | ".join(f"{s} Mrays/s" for s in sets)
+        + " | steps/ray | cycles/step | bytes/voxel | build s | mismatches |",
+        "|---|---:|---|---|" + "---:|" * len(sets) + "---:|---:|---:|---:|---:|",
     ]
+    groups = {}
     for r in rows:
-        cycles = r.get("cycles_per_ray_step")
-        mism = str(r["mismatches"])
-        if r.get("limitation_rays"):
-            mism += f' (+{r["limitation_rays"]} labelled: {r["limitation"]})'
-        size = f'{r["width"]}x{r["height"]}' if r["width"] else "file"
+        groups.setdefault((r["scene"], r["structure"], r["backend"]), {})[r["ray_set"]] = r
+    for (scene, structure, backend), by_set in groups.items():
+        first = next(iter(by_set.values()))
+        lead = by_set.get(sets[0], first)
+        speeds = [
+            f'{by_set[s]["mrays_median"]:.2f} ({by_set[s]["mrays_min"]:.2f}-{by_set[s]["mrays_max"]:.2f})' if s in by_set else "-"
+            for s in sets
+        ]
+        cycles = lead.get("cycles_per_ray_step")
+        per_voxel = "-" if lead["bytes_per_voxel"] is None else f'{lead["bytes_per_voxel"]:.1f}'
+        mism = str(sum(r["mismatches"] for r in by_set.values()))
+        labelled = sum(r.get("limitation_rays", 0) for r in by_set.values())
+        if labelled:
+            mism += f' (+{labelled} labelled: {first["limitation"]})'
         lines.append(
-            f'| {r["scene"]} | {r["voxels"]:,} | {r["structure"]} | {r["backend"]} | {r["ray_set"]} | {size} | '
-            f'{r["mrays_median"]:.2f} ({r["mrays_min"]:.2f}-{r["mrays_max"]:.2f}) | {r["steps_per_ray"]:.1f} | '
-            f'{"-" if cycles is None else f"{cycles:.0f}"} | {r["bytes_per_voxel"]:.1f} | {r["build_seconds"]:.2f} | {mism} |'
+            f'| {scene} | {first["voxels"]:,} | {structure} | {backend} | ' + " | ".join(speeds)
+            + f' | {lead["steps_per_ray"]:.1f} | {"-" if cycles is None else f"{cycles:.0f}"} | {per_voxel} | '
+            f'{lead["build_seconds"]:.2f} | {mism} |'
         )
     for r in errors:
-        lines.append(f'| {r["scene"]} | {r["voxels"]:,} | {r["structure"]} | {r["backend"]} | {r["ray_set"]} | | error: {r["error"]} | | | | | |')
+        lines.append(f'\nError in {r["scene"]} / {r["structure"]} / {r["backend"]} / {r["ray_set"]}: {r["error"]}')
     return "\n".join(lines) + "\n"
 
 

@@ -22,7 +22,7 @@ struct check_options {
     std::size_t rays = 1000000;
     std::uint64_t seed = 1;
     int edits = 0;
-    std::string structures = "dense,brickmap,embree-boxes", backends = "cpu,cpu-scalar,opencl,vulkan", json;
+    std::string structures = exact_structure_names(), backends, json;
 };
 
 void print_hit(const char* label, const hit& h) {
@@ -122,6 +122,7 @@ int check(const check_options& o) {
 command add_check(CLI::App& parent) {
     auto* app = parent.add_subcommand("check", "every structure x backend against the reference on the same rays");
     auto o = std::make_shared<check_options>();
+    for (auto& b : backend_names()) o->backends += (o->backends.empty() ? "" : ",") + b;
     o->scene.add_to(app, false);
     app->add_option("--rays", o->rays, "rays to trace (half camera rays, half random)")
         ->check(CLI::Range(std::size_t(1), std::size_t(100000000)))->capture_default_str();

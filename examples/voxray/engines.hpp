@@ -232,6 +232,18 @@ inline std::string structure_names(const char* separator = ", ") {
     return out;
 }
 
+// The structures and baselines that answer every ray of the contract (no known limitation):
+// what `check` compares by default.
+inline std::string exact_structure_names() {
+    std::string out;
+    auto add = [&]<class S>() {
+        if constexpr (!requires { S::limitation; }) out += (out.empty() ? "" : ",") + std::string(S::name);
+    };
+    for_each_type(registered::structures{}, add);
+    for_each_type(baselines{}, add);
+    return out;
+}
+
 // Builds structure or baseline `name` from the model.
 inline std::shared_ptr<slot> build_structure(const std::string& name, const voxel_model& model) {
     std::shared_ptr<slot> s;
