@@ -199,11 +199,21 @@ int run_matrix(const bench_options& o) {
         failed += row.contains("error") || row.value("mismatches", std::uint64_t(0)) > 0;
     };
     for (auto& spec : o.scene.scenes) {
-        auto model = load_scene(spec, o.scene.resolution);
-        auto reference = build_structure("dense", model);
-        std::fprintf(stderr, "tracing the reference (dense, cpu) for the ray sets ...\n");
-        auto reference_engine = reference->trace_on("cpu");
-        auto sets = make_ray_sets(o, model, *reference_engine);
+        voxel_model model;
+        std::shared_ptr<slot> reference;
+        std::unique_ptr<traceable> reference_engine;
+        std::vector<ray_set> sets;
+        try {  // a scene that cannot be loaded is one error row; the other scenes still run
+            model = load_scene(spec, o.scene.resolution);
+            reference = build_structure("dense", model);
+            std::fprintf(stderr, "tracing the reference (dense, cpu) for the ray sets ...\n");
+            reference_engine = reference->trace_on("cpu");
+            sets = make_ray_sets(o, model, *reference_engine);
+        } catch (const std::exception& e) {
+            emit({{"type", "row"}, {"scene", scene_label(spec)}, {"voxels", 0}, {"structure", "*"}, {"backend", "*"},
+                  {"ray_set", "*"}, {"error", e.what()}});
+            continue;
+        }
         for (auto& s : sets)
             if (!o.write_rays.empty() && s.width)
                 io::write_rays(std::filesystem::path(o.write_rays) / file_name(scene_label(spec) + "." + s.name + ".vxrays"), s.rays);
