@@ -1,227 +1,298 @@
-// voxray bench: Mrays/s of one structure x backend on primary, secondary (diffuse bounce)
-// or shadow rays. One warm-up run, then --runs timed runs; every run's hits are validated
-// against the dense grid on the CPU, and the machine-independent cost (steps per ray) is
-// reported beside the times.
+// voxray bench: the benchmark matrix, structures x backends x scenes x ray sets in one run.
+// Per row: warm-up runs, then the median (min, max) of --runs timed runs; every timed run's
+// hits are validated against the reference (dense grid on the CPU) while measuring. A row
+// that disagrees or fails is reported and the matrix goes on; a baseline's known limitation
+// (Embree quads cannot answer rays that start inside solid) is labelled, its rays counted
+// apart. Results: one JSON line per row after a header line (--out); see README.
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
-#include <cstdlib>
+#include <filesystem>
 #include <fstream>
-#include <string>
+#include <sstream>
 
-#include "args.hpp"
-#include "edits.hpp"
+#include <nlohmann/json.hpp>
+
+#include "bench_header.hpp"
+#include "bench_options.hpp"
+#include "cli.hpp"
 #include "commands.hpp"
 #include "engines.hpp"
-#include "scene.hpp"
 #include "voxray/check/compare.hpp"
 #include "voxray/check/ray_sets.hpp"
+#include "voxray/io/ray_file.hpp"
 
 namespace voxray::tool {
 
-
 namespace {
 
-// The CPU clock in Hz as the kernel reports it (the largest "cpu MHz" in /proc/cpuinfo),
-// 0 when unknown. Cycles per ray-step = threads x clock / (rays/s x steps/ray).
-double cpu_clock_hz() {
-    std::ifstream in("/proc/cpuinfo");
-    double best = 0;
-    for (std::string line; std::getline(in, line);)
-        if (line.rfind("cpu MHz", 0) == 0) {
-            auto colon = line.find(':');
-            if (colon != std::string::npos) best = std::max(best, std::atof(line.c_str() + colon + 1) * 1e6);
-        }
-    return best;
+struct ray_set {
+    std::string name;
+    std::vector<ray> rays;
+    std::vector<hit> expected;  // the reference's answers
+    bool shadow = false;        // any-hit (only whether something is hit must agree)
+    int width = 0, height = 0;  // 0 for a ray file
+};
+
+std::string scene_label(const std::string& spec) {
+    if (spec.rfind("builtin:", 0) == 0) return spec;
+    return std::filesystem::path(spec).filename().string();
 }
 
-// Rays of the requested kind; secondary and shadow rays start from the reference's hits.
-std::vector<ray> make_rays(const std::string& kind, const voxel_model& model, traceable& reference, int w, int h) {
-    auto primary = primary_rays(auto_camera(model.bounds(), model.up_axis, 0), w, h);
-    if (kind == "primary") return primary;
-    std::vector<hit> hits(primary.size());
-    reference.closest_hit(primary, hits);
-    if (kind == "secondary") return secondary_rays(primary, hits, 7);
-    if (kind == "shadow") return shadow_rays(primary, hits, light_direction(model.up_axis));
-    fail("--rays must be primary, secondary or shadow, not '", kind, "'");
+// `text` with ':' (builtin:menger:81) made '_', usable as a file name anywhere.
+std::string file_name(std::string text) {
+    std::replace(text.begin(), text.end(), ':', '_');
+    return text;
 }
 
-// The brickmap paper's editing load: 50 balls of radius 25 bouncing through the world;
-// each frame erases every ball and fills it at its new place (100 sphere edits in one
-// batch), then brings the backend up to date with only the changed words.
-int run_edit_bench(const args& a, const voxel_model& model, const std::string& structure_name,
-                   const std::string& backend) {
-    std::string kind = a.get("edits", "");
-    if (kind != "spheres" && kind != "voxel") fail("--edits must be 'spheres' or 'voxel', not '", kind, "'");
-    unsigned threads = unsigned(a.number("threads", 2, 1, 256));
-    int frames = int(a.number("runs", 20, 1, 100000));
-    constexpr int balls = 50, radius = 25;
-
-    auto structure = build_structure(structure_name, model);
-    if (!structure->editable()) fail("--edits needs an editable structure, not ", structure_name);
-    auto engine = structure->trace_on(backend);
-    box3i world = model.bounds();
-    rng g(11);
-    std::vector<glm::vec3> position(balls), velocity(balls);
-    glm::vec3 lo = glm::vec3(world.min), hi = glm::vec3(world.max);
-    for (int i = 0; i < balls; ++i) {
-        for (int k = 0; k < 3; ++k) {
-            position[i][k] = g.uniform(lo[k], hi[k]);
-            velocity[i][k] = g.uniform(-4.0f, 4.0f);
-        }
+// The ray sets of one scene, with the reference's answers. Secondary and shadow rays start
+// from the reference's primary hits, so every structure gets the very same rays.
+std::vector<ray_set> make_ray_sets(const bench_options& o, const voxel_model& model, traceable& reference) {
+    std::vector<ray_set> sets;
+    auto primary = primary_rays(auto_camera(model.bounds(), model.up_axis, 0), o.width, o.height);
+    std::vector<hit> primary_hits(primary.size());
+    reference.closest_hit(primary, primary_hits);
+    for (auto& name : split_names(o.ray_sets)) {
+        ray_set s{name, {}, {}, name == "shadow", o.width, o.height};
+        if (name == "primary") s.rays = primary;
+        if (name == "secondary") s.rays = secondary_rays(primary, primary_hits, 7);
+        if (name == "shadow") s.rays = shadow_rays(primary, primary_hits, light_direction(model.up_axis));
+        sets.push_back(std::move(s));
     }
-    auto sphere_at = [&](int i) { return regions::sphere{glm::ivec3(glm::floor(position[i])), radius}; };
-
-    double edit_seconds = 0, update_seconds = 0;
-    std::uint64_t writes = 0, uploaded = 0;
-    std::vector<region_edit> edits;
-    // Frame 0 is a warm-up, not counted: a map built to size grows its brick pool on its
-    // first new brick, and that update sends the whole (reallocated) blob once.
-    for (int f = 0; f <= frames; ++f) {
-        std::fprintf(stderr, "frame %d/%d ...\r", f, frames);
-        edits.clear();
-        if (kind == "voxel") {  // the smallest edit: one voxel somewhere in the world
-            glm::ivec3 e = world.extent();
-            edits.push_back({regions::box{box3i{world.min + glm::ivec3(g.below(e.x), g.below(e.y), g.below(e.z)), {}}},
-                             edit_op::fill, std::uint32_t(1 + g.below(255))});
-            auto& b = std::get<regions::box>(edits.back().region).b;
-            b.max = b.min + 1;
-        }
-        for (int i = 0; kind == "spheres" && i < balls; ++i) {
-            edits.push_back({sphere_at(i), edit_op::erase, 0});
-            for (int k = 0; k < 3; ++k) {  // bounce off the world's walls
-                position[i][k] += velocity[i][k];
-                if (position[i][k] < lo[k] || position[i][k] >= hi[k]) velocity[i][k] = -velocity[i][k];
-                position[i][k] = std::clamp(position[i][k], lo[k], hi[k] - 1.0f);
-            }
-            edits.push_back({sphere_at(i), edit_op::fill, std::uint32_t(1 + i * 5)});
-        }
-        for (auto& e : edits) writes += f == 0 ? 0 : std::visit([&](const auto& r) { return region_voxels(r, world); }, e.region);
-        if (f == 0) {
-            structure->apply_edits(edits, threads);
-            engine->after_edits(model);
-            continue;
-        }
-        auto start = std::chrono::steady_clock::now();
-        structure->apply_edits(edits, threads);  // edits, then takes the dirty ranges
-        auto edited = std::chrono::steady_clock::now();
-        engine->after_edits(model);
-        auto synced = std::chrono::steady_clock::now();
-        edit_seconds += std::chrono::duration<double>(edited - start).count();
-        update_seconds += std::chrono::duration<double>(synced - edited).count();
-        uploaded += engine->bytes_uploaded_last_update();
+    if (!o.ray_file.empty()) sets.push_back({"file:" + std::filesystem::path(o.ray_file).stem().string(), io::read_rays(o.ray_file), {}, false, 0, 0});
+    for (auto& s : sets) {
+        s.expected.resize(s.rays.size());
+        if (s.shadow) reference.any_hit(s.rays, s.expected);
+        else reference.closest_hit(s.rays, s.expected);
     }
-    std::fprintf(stderr, "\n");
-    double per_second = double(writes) / edit_seconds;
-    double per_update = double(uploaded) / frames;
-    std::printf("scene %s  structure %s  backend %s (%s)  %d frames of %s, %u threads\n",
-                a.positional()[0].c_str(), structure_name.c_str(), backend.c_str(), engine->device().c_str(), frames,
-                kind == "voxel" ? "one voxel edit" : "100 sphere edits (50 balls, r 25)", threads);
-    std::printf("world %d x %d x %d, blob %zu bytes; %.2f ms edits and %.2f ms update per frame\n",
-                world.extent().x, world.extent().y, world.extent().z, structure->bytes(), 1e3 * edit_seconds / frames,
-                1e3 * update_seconds / frames);
-    if (a.has("json")) {
-        std::ofstream j(a.get("json", ""));
-        j << "{\"scene\": \"" << a.positional()[0] << "\", \"structure\": \"" << structure_name << "\", \"backend\": \"" << backend
-          << "\", \"edits\": \"" << kind << "\", \"threads\": " << threads << ", \"frames\": " << frames
-          << ", \"voxel_writes\": " << writes << ", \"writes_per_second\": " << per_second
-          << ", \"bytes_uploaded_per_update\": " << per_update << ", \"blob_bytes\": " << structure->bytes()
-          << ", \"update_ms\": " << 1e3 * update_seconds / frames << "}\n";
-        if (!j) fail("cannot write ", a.get("json", ""));
-    }
-    std::printf("edits: %.0f voxel writes/s, %.0f bytes uploaded per update\n", per_second, per_update);
-    return 0;
+    return sets;
 }
 
-}  // namespace
+// Whether ray r starts inside a solid voxel of the model.
+bool starts_inside_solid(const ray& r, const voxel_model& model) {
+    glm::vec3 p = r.origin + r.direction * r.tmin;
+    if (!(std::abs(p.x) < 1e9f && std::abs(p.y) < 1e9f && std::abs(p.z) < 1e9f)) return false;
+    return model.get(glm::ivec3(glm::floor(p))) != 0;
+}
 
-int run_bench(int argc, char** argv) {
-    args a(argc, argv, 2,
-           {"structure", "backend", "rays", "width", "height", "runs", "json", "resolution", "edits", "threads"});
-    if (a.positional().size() != 1) fail("bench takes one SCENE");
-    std::string scene = a.positional()[0], kind = a.get("rays", "primary");
-    std::string structure_name = a.get("structure", "dense"), backend = a.get("backend", "cpu");
-    int width = int(a.number("width", 1920, 1, 16384)), height = int(a.number("height", 1080, 1, 16384));
-    int runs = int(a.number("runs", 5, 1, 1000));
-    if (kind != "primary" && kind != "secondary" && kind != "shadow")
-        fail("--rays must be primary, secondary or shadow, not '", kind, "'");
-    auto model = load_scene(scene, int(a.number("resolution", 512, 1, 4096)));
-    if (a.has("edits")) return run_edit_bench(a, model, structure_name, backend);
+// Any-hit answers carry only a status. Where the reference's says "hit" and the other's
+// "miss", the reference's closest hit tells whether that is a graze or a touch at tmax,
+// which compare_hits() counts as a tie.
+agreement judge_any_hit(const ray& r, const hit& expected, const hit& got, traceable& reference) {
+    if (expected.is_hit() == got.is_hit()) return agreement::same;
+    if (!expected.is_hit()) return agreement::mismatch;
+    std::vector<ray> one{r};
+    std::vector<hit> closest(1);
+    reference.closest_hit(one, closest);
+    return compare_hits(r, closest[0], hit{});
+}
 
-    std::fprintf(stderr, "building %s ...\n", structure_name.c_str());
-    auto structure = build_structure(structure_name, model);
-    auto engine = structure->trace_on(backend);
-    auto reference_grid = structure_name == "dense" ? structure : build_structure("dense", model);
-    auto reference = reference_grid->trace_on("cpu");
-
-    auto rays = make_rays(kind, model, *reference, width, height);
-    bool shadow = kind == "shadow";
-    std::vector<hit> expected(rays.size()), hits(rays.size());
-    auto trace = [&](traceable& t, std::vector<hit>& out) {
-        if (shadow) t.any_hit(rays, out);
-        else t.closest_hit(rays, out);
+// Times one structure x backend on one ray set and validates every timed run.
+nlohmann::json measure(const bench_options& o, slot& structure, traceable& engine, const ray_set& set,
+                       const voxel_model& model, traceable& reference) {
+    std::vector<hit> hits(set.rays.size());
+    auto trace = [&] {
+        if (set.shadow) engine.any_hit(set.rays, hits);
+        else engine.closest_hit(set.rays, hits);
     };
-    trace(*reference, expected);
-
-    std::fprintf(stderr, "warm-up on %s ...\n", engine->device().c_str());
-    trace(*engine, hits);
+    for (int w = 0; w < o.warmup; ++w) trace();
+    std::string limitation = structure.limitation();
     std::vector<double> mrays;
-    std::uint64_t mismatches = 0, ties = 0;
-    for (int r = 0; r < runs; ++r) {
-        std::fprintf(stderr, "run %d/%d ...\r", r + 1, runs);
+    std::uint64_t mismatches = 0, ties = 0, limited = 0;
+    for (int r = 0; r < o.runs; ++r) {
         std::fill(hits.begin(), hits.end(), hit{});
         auto start = std::chrono::steady_clock::now();
-        trace(*engine, hits);
+        trace();
         double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-        mrays.push_back(double(rays.size()) / s * 1e-6);
-        for (std::size_t i = 0; i < rays.size(); ++i) {
-            // Any-hit answers may name different voxels: only whether one exists must agree.
-            auto verdict = shadow ? (hits[i].is_hit() == expected[i].is_hit() ? agreement::same : agreement::mismatch)
-                                  : compare_hits(rays[i], expected[i], hits[i]);
-            mismatches += verdict == agreement::mismatch;
+        mrays.push_back(double(set.rays.size()) / s * 1e-6);
+        for (std::size_t i = 0; i < set.rays.size(); ++i) {
+            auto verdict = set.shadow ? judge_any_hit(set.rays[i], set.expected[i], hits[i], reference)
+                                      : compare_hits(set.rays[i], set.expected[i], hits[i]);
+            if (verdict == agreement::mismatch && !limitation.empty() && starts_inside_solid(set.rays[i], model)) ++limited;
+            else mismatches += verdict == agreement::mismatch;
             ties += verdict == agreement::tie;
         }
     }
-    std::fprintf(stderr, "\n");
     double steps = 0;
     for (auto& h : hits) steps += h.steps;
     steps /= double(std::max<std::size_t>(1, hits.size()));
     std::vector<double> sorted = mrays;
     std::sort(sorted.begin(), sorted.end());
-    double median = sorted[sorted.size() / 2], lo = sorted.front(), hi = sorted.back();
-
-    std::printf("scene %s  structure %s  backend %s (%s)  rays %s %dx%d  runs %d\n", scene.c_str(),
-                structure_name.c_str(), backend.c_str(), engine->device().c_str(), kind.c_str(), width, height, runs);
-    std::printf("bytes %zu (%.2f per voxel)  build %.3f s  steps/ray %.2f\n", structure->bytes(),
-                double(structure->bytes()) / double(std::max<std::uint64_t>(1, model.voxel_count())), structure->build_seconds(),
-                steps);
-    // A CPU backend's cost per step of one ray, from the measured clock (CPU backends with
-    // steps only: a device's threads are not this machine's cores).
+    std::size_t n = sorted.size();
+    double median = n % 2 ? sorted[n / 2] : 0.5 * (sorted[n / 2 - 1] + sorted[n / 2]);
     double clock = cpu_clock_hz();
-    unsigned threads = engine->cpu_threads();
-    double cycles_per_step = threads > 0 && clock > 0 && steps > 0 ? threads * clock / (median * 1e6 * steps) : 0.0;
-    if (cycles_per_step > 0)
-        std::printf("cycles/ray-step %.1f (%u threads, %.2f GHz, %u lanes)\n", cycles_per_step, threads, clock * 1e-9,
-                    engine->simd_width());
-    std::printf("validated %zu rays x %d runs against dense/cpu: %llu mismatches, %llu ties\n", rays.size(), runs,
-                (unsigned long long)mismatches, (unsigned long long)ties);
-    if (a.has("json")) {
-        std::ofstream j(a.get("json", ""));
-        j << "{\"scene\": \"" << scene << "\", \"structure\": \"" << structure_name << "\", \"backend\": \"" << backend
-          << "\", \"device\": \"" << engine->device() << "\", \"rays\": \"" << kind << "\", \"width\": " << width
-          << ", \"height\": " << height << ", \"runs\": " << runs << ", \"ray_count\": " << rays.size()
-          << ", \"voxels\": " << model.voxel_count() << ", \"bytes\": " << structure->bytes()
-          << ", \"build_seconds\": " << structure->build_seconds() << ", \"steps_per_ray\": " << steps
-          << ", \"cycles_per_ray_step\": " << cycles_per_step << ", \"threads\": " << threads
-          << ", \"simd_width\": " << engine->simd_width() << ", \"clock_hz\": " << clock
-          << ", \"mrays_median\": " << median << ", \"mrays_min\": " << lo << ", \"mrays_max\": " << hi
-          << ", \"mrays_runs\": [";
-        for (std::size_t i = 0; i < mrays.size(); ++i) j << (i ? ", " : "") << mrays[i];
-        j << "], \"mismatches\": " << mismatches << ", \"ties\": " << ties << "}\n";
-        if (!j) fail("cannot write ", a.get("json", ""));
+    unsigned threads = engine.cpu_threads();
+    // A CPU backend's cost per step of one ray (a device's threads are not this machine's cores).
+    double cycles = threads > 0 && clock > 0 && steps > 0 ? threads * clock / (median * 1e6 * steps) : NAN;
+    std::uint64_t voxels = model.voxel_count();
+    return {{"steps_per_ray", steps},
+            {"cycles_per_ray_step", cycles},
+            {"threads", threads},
+            {"simd_width", engine.simd_width()},
+            {"mrays_median", median},
+            {"mrays_min", sorted.front()},
+            {"mrays_max", sorted.back()},
+            {"mrays_runs", mrays},
+            {"bytes", structure.bytes()},
+            {"bytes_per_voxel", voxels ? double(structure.bytes()) / double(voxels) : NAN},
+            {"build_seconds", structure.build_seconds()},
+            {"validated_rays", set.rays.size() * std::size_t(o.runs)},
+            {"mismatches", mismatches},
+            {"ties", ties},
+            {"limitation", limitation.empty() ? nlohmann::json() : nlohmann::json(limitation)},
+            {"limitation_rays", limited}};
+}
+
+std::string own_command_line() {
+    std::ifstream in("/proc/self/cmdline", std::ios::binary);
+    std::string all((std::istreambuf_iterator<char>(in)), {}), out;
+    for (char c : all) out += c ? c : ' ';
+    while (!out.empty() && out.back() == ' ') out.pop_back();
+    return out;
+}
+
+void print_row(const nlohmann::json& r) {
+    if (r.contains("error")) {
+        std::printf("%-22s %-14s %-11s %-10s  error: %s\n", r["scene"].get<std::string>().c_str(),
+                    r["structure"].get<std::string>().c_str(), r["backend"].get<std::string>().c_str(),
+                    r["ray_set"].get<std::string>().c_str(), r["error"].get<std::string>().c_str());
+        return;
     }
-    std::printf("median %.2f Mrays/s (min %.2f, max %.2f)\n", median, lo, hi);
-    return mismatches == 0 ? 0 : 1;
+    auto limited = r["limitation_rays"].get<std::uint64_t>();
+    std::string label = limited ? "  (+" + std::to_string(limited) + " labelled: " + r["limitation"].get<std::string>() + ")" : "";
+    std::printf("%-22s %-14s %-11s %-10s %9.2f %9.2f %9.2f %9.2f %9.2f %10llu%s\n", r["scene"].get<std::string>().c_str(),
+                r["structure"].get<std::string>().c_str(), r["backend"].get<std::string>().c_str(),
+                r["ray_set"].get<std::string>().c_str(), r["mrays_median"].get<double>(), r["mrays_min"].get<double>(),
+                r["mrays_max"].get<double>(), r["steps_per_ray"].get<double>(),
+                r["bytes_per_voxel"].is_number() ? r["bytes_per_voxel"].get<double>() : 0.0,
+                (unsigned long long)r["mismatches"].get<std::uint64_t>(),
+                label.c_str());
+    std::fflush(stdout);
+}
+
+}  // namespace
+
+int run_matrix(const bench_options& o) {
+    auto structures = split_names(o.structures), backends = split_names(o.backends);
+    auto sets_per_scene = split_names(o.ray_sets).size() + (o.ray_file.empty() ? 0 : 1);
+    // Rays, reference hits and hits under test, per ray set of one scene.
+    require_memory(std::uint64_t(o.width) * std::uint64_t(o.height) * (sizeof(ray) + 3 * sizeof(hit)) * (sets_per_scene + 1),
+                   "bench at " + std::to_string(o.width) + " x " + std::to_string(o.height));
+    if (!o.out.empty()) require_writable(o.out, "--out");
+    if (!o.write_rays.empty()) std::filesystem::create_directories(o.write_rays);
+    if (!o.ray_file.empty()) io::read_rays(o.ray_file);  // a bad file fails now, not after the first scene
+
+    std::ofstream out;
+    if (!o.out.empty()) {
+        out.open(o.out);
+        out << results_header(own_command_line(), build_structure("dense", voxel_model{})->trace_on("cpu")->simd_width()).dump() << "\n";
+    }
+    std::printf("%-22s %-14s %-11s %-10s %9s %9s %9s %9s %9s %10s\n", "scene", "structure", "backend", "rays", "Mrays/s",
+                "min", "max", "steps/ray", "B/voxel", "mismatches");
+    std::size_t rows = 0, total = o.scene.scenes.size() * structures.size() * backends.size() * sets_per_scene;
+    int failed = 0, emitted = 0;
+    auto emit = [&](nlohmann::json row) {
+        print_row(row);
+        ++emitted;
+        if (out.is_open()) out << row.dump() << "\n" << std::flush;
+        failed += row.contains("error") || row.value("mismatches", std::uint64_t(0)) > 0;
+    };
+    for (auto& spec : o.scene.scenes) {
+        voxel_model model;
+        std::shared_ptr<slot> reference;
+        std::unique_ptr<traceable> reference_engine;
+        std::vector<ray_set> sets;
+        try {  // a scene that cannot be loaded is one error row; the other scenes still run
+            model = load_scene(spec, o.scene.resolution);
+            reference = build_structure("dense", model);
+            std::fprintf(stderr, "tracing the reference (dense, cpu) for the ray sets ...\n");
+            reference_engine = reference->trace_on("cpu");
+            sets = make_ray_sets(o, model, *reference_engine);
+        } catch (const std::exception& e) {
+            emit({{"type", "row"}, {"scene", scene_label(spec)}, {"voxels", 0}, {"structure", "*"}, {"backend", "*"},
+                  {"ray_set", "*"}, {"error", e.what()}});
+            continue;
+        }
+        for (auto& s : sets)
+            if (!o.write_rays.empty() && s.width)
+                io::write_rays(std::filesystem::path(o.write_rays) / file_name(scene_label(spec) + "." + s.name + ".vxrays"), s.rays);
+        for (auto& name : structures) {
+            std::shared_ptr<slot> structure;
+            std::string build_error;
+            std::fprintf(stderr, "building %s ...\n", name.c_str());
+            try {
+                structure = name == "dense" ? reference : build_structure(name, model);
+            } catch (const std::exception& e) {
+                build_error = e.what();
+            }
+            for (auto& backend : backends) {
+                if (structure && !structure->runs_on(backend)) {
+                    rows += sets.size();
+                    continue;  // e.g. Embree on opencl: the pair does not exist
+                }
+                std::unique_ptr<traceable> engine;
+                std::string error = build_error;
+                try {
+                    if (structure) engine = structure->trace_on(backend);
+                } catch (const std::exception& e) {
+                    error = e.what();
+                }
+                for (auto& set : sets) {
+                    std::fprintf(stderr, "[%zu/<=%zu] %s / %s / %s / %s ...\n", ++rows, total, scene_label(spec).c_str(),
+                                 name.c_str(), backend.c_str(), set.name.c_str());
+                    nlohmann::json row = {{"type", "row"}, {"scene", scene_label(spec)}, {"voxels", model.voxel_count()},
+                                          {"structure", name}, {"backend", backend},
+                                          {"device", engine ? engine->device() : std::string()}, {"ray_set", set.name},
+                                          {"width", set.width}, {"height", set.height}, {"rays", set.rays.size()},
+                                          {"runs", o.runs}, {"warmup", o.warmup}};
+                    try {
+                        if (!engine) fail(error);
+                        row.update(measure(o, *structure, *engine, set, model, *reference_engine));
+                    } catch (const std::exception& e) {
+                        row["error"] = e.what();
+                    }
+                    emit(row);
+                }
+            }
+        }
+    }
+    std::printf("%d rows; %d with mismatches or errors%s\n", emitted, failed, o.out.empty() ? "" : ("; results in " + o.out).c_str());
+    return failed == 0 ? 0 : 1;
+}
+
+command add_bench(CLI::App& parent) {
+    auto* app = parent.add_subcommand("bench", "benchmark matrix: structures x backends x scenes x ray sets, validated; "
+                                               "or --edits: the brickmap's editing rates");
+    auto o = std::make_shared<bench_options>();
+    o->structures = structure_names(",");  // every registered structure and baseline
+    for (auto& b : backend_names()) o->backends += (o->backends.empty() ? "" : ",") + b;
+    o->ray_sets = "primary,secondary,shadow";
+    o->scene.add_to(app, true);
+    app->add_option("--structures,--structure", o->structures, "structures (and baselines) to measure")
+        ->check(names_from(all_structure_names(), "structure"))->capture_default_str();
+    app->add_option("--backends,--backend", o->backends, "backends to measure on")
+        ->check(names_from(backend_names(), "backend"))->capture_default_str();
+    app->add_option("--rays", o->ray_sets, "ray sets: primary (camera at W x H), secondary (diffuse bounces), shadow")
+        ->check(names_from(ray_set_names, "ray set"))->capture_default_str();
+    app->add_option("--ray-file", o->ray_file, "also trace the rays of this .vxrays file (closest hit)")->check(CLI::ExistingFile);
+    app->add_option("--write-rays", o->write_rays, "write each generated ray set to DIR/SCENE.SET.vxrays");
+    app->add_option("--width", o->width, "primary ray columns")->check(CLI::Range(1, 16384))->capture_default_str();
+    app->add_option("--height", o->height, "primary ray rows")->check(CLI::Range(1, 16384))->capture_default_str();
+    app->add_option("--runs", o->runs, "timed runs (median reported); frames with --edits")->check(CLI::Range(1, 100000))->capture_default_str();
+    app->add_option("--warmup", o->warmup, "untimed runs first")->check(CLI::Range(0, 100))->capture_default_str();
+    app->add_option("--out,--json", o->out, "results file: a header line, then one JSON line per row");
+    app->add_option("--edits", o->edits, "measure editing instead: spheres (50 balls a frame) or voxel")
+        ->check(CLI::IsMember({"spheres", "voxel"}));
+    app->add_option("--threads", o->threads, "threads that apply edits")->check(CLI::Range(1u, 256u))->capture_default_str();
+    return {app, [o, app] {
+        if (o->edits.empty()) return run_matrix(*o);
+        bench_options edit = *o;  // editing defaults: the editable brickmap on the CPU
+        if (!app->count("--structures")) edit.structures = "brickmap";
+        if (!app->count("--backends")) edit.backends = "cpu";
+        if (!app->count("--runs")) edit.runs = 20;
+        return run_edit_bench(edit);
+    }};
 }
 
 }  // namespace voxray::tool

@@ -1,10 +1,13 @@
 // voxray check: every structure x backend against the reference (dense grid, cpu-scalar)
-// on the same rays; per pair the mismatch and tie counts (see check/compare.hpp).
+// on the same rays; per pair the mismatch and tie counts (see check/compare.hpp). A check
+// that compared nothing fails.
 #include <cstdio>
+#include <fstream>
 
-#include "args.hpp"
+#include <nlohmann/json.hpp>
+
+#include "cli.hpp"
 #include "edits.hpp"
-#include "commands.hpp"
 #include "engines.hpp"
 #include "scene.hpp"
 #include "voxray/check/compare.hpp"
@@ -13,6 +16,14 @@
 namespace voxray::tool {
 
 namespace {
+
+struct check_options {
+    scene_options scene;
+    std::size_t rays = 1000000;
+    std::uint64_t seed = 1;
+    int edits = 0;
+    std::string structures = exact_structure_names(), backends, json;
+};
 
 void print_hit(const char* label, const hit& h) {
     std::printf("    %-9s %s t=%.9g voxel=(%d, %d, %d) face=%s material=%u\n", label, h.is_hit() ? "hit " : "miss", h.t,
@@ -26,8 +37,6 @@ void print_mismatch(std::size_t index, const ray& r, const hit& expected, const 
     print_hit("reference", expected);
     print_hit("got", got);
 }
-
-}  // namespace
 
 // Applies the edits to every editable structure through its editing API and to the model
 // (the reference), then brings every tracer up to date: each editable structure sends its
@@ -44,15 +53,9 @@ void apply_edits(const std::vector<region_edit>& edits, voxel_model& model, std:
     for (auto& t : tracers) t->after_edits(model);
 }
 
-int run_check(int argc, char** argv) {
-    args a(argc, argv, 2, {"rays", "structures", "backends", "seed", "resolution", "edits"});
-    if (a.positional().size() != 1) fail("check takes one SCENE");
-    auto count = std::size_t(a.number("rays", 1000000, 1, 100000000));
-    auto seed = std::uint64_t(a.number("seed", 1, 0, 1ll << 62));
-    int edit_count = int(a.number("edits", 0, 0, 100000));
-    auto structure_names = a.list("structures", "dense,brickmap,embree-boxes");
-    auto backend_names = a.list("backends", "cpu,cpu-scalar,opencl,vulkan");
-    auto model = load_scene(a.positional()[0], int(a.number("resolution", 512, 1, 4096)));
+int check(const check_options& o) {
+    if (!o.json.empty()) require_writable(o.json, "--json");
+    auto model = load_scene(o.scene.scenes[0], o.scene.resolution);
     box3i world = model.bounds();
 
     // Every pair is set up before any edit, so that edits reach it through update().
@@ -60,10 +63,10 @@ int run_check(int argc, char** argv) {
     std::vector<std::unique_ptr<traceable>> tracers;
     std::vector<std::pair<std::string, std::string>> labels;
     std::printf("%-14s %-11s %12s %10s\n", "structure", "backend", "mismatches", "ties");
-    for (auto& s : structure_names) {
+    for (auto& s : split_names(o.structures)) {
         std::fprintf(stderr, "building %s ...\n", s.c_str());
         structures.push_back(build_structure(s, model));
-        for (auto& b : backend_names) {
+        for (auto& b : split_names(o.backends)) {
             if (!structures.back()->runs_on(b)) {
                 std::printf("%-14s %-11s %s\n", s.c_str(), b.c_str(), "(pair does not exist: not counted)");
                 continue;
@@ -72,13 +75,16 @@ int run_check(int argc, char** argv) {
             labels.emplace_back(s, b);
         }
     }
-    if (edit_count > 0) apply_edits(random_edits(world, edit_count, seed ^ 0x5eed), model, structures, tracers);
+    if (tracers.empty()) fail("no structure x backend pair exists among --structures ", o.structures, " and --backends ", o.backends, ": nothing to check");
+    if (o.edits > 0 && world.empty()) fail("--edits ", o.edits, ": the scene has no voxels, so no world to edit");
+    if (o.edits > 0) apply_edits(random_edits(world, o.edits, o.seed ^ 0x5eed), model, structures, tracers);
 
-    auto rays = check_rays(world, model.up_axis, count, seed);
+    auto rays = check_rays(world, model.up_axis, o.rays, o.seed);
     std::fprintf(stderr, "tracing %zu rays on the reference (dense, cpu-scalar) ...\n", rays.size());
     std::vector<hit> reference(rays.size()), hits(rays.size());
     build_structure("dense", model)->trace_on("cpu-scalar")->closest_hit(rays, reference);
 
+    nlohmann::json pairs = nlohmann::json::array();
     std::uint64_t mismatches = 0, ties = 0;
     for (std::size_t p = 0; p < tracers.size(); ++p) {
         auto& [s, b] = labels[p];
@@ -93,12 +99,42 @@ int run_check(int argc, char** argv) {
         }
         std::printf("%-14s %-11s %12llu %10llu\n", s.c_str(), b.c_str(), (unsigned long long)counts.mismatches,
                     (unsigned long long)counts.ties);
+        pairs.push_back({{"structure", s}, {"backend", b}, {"device", tracers[p]->device()}, {"rays", counts.rays},
+                         {"same", counts.same}, {"ties", counts.ties}, {"mismatches", counts.mismatches}});
         mismatches += counts.mismatches;
         ties += counts.ties;
     }
     std::printf("checked %zu rays x %zu pairs: %llu mismatches, %llu ties\n", rays.size(), tracers.size(),
                 (unsigned long long)mismatches, (unsigned long long)ties);
+    if (!o.json.empty()) {
+        nlohmann::json doc = {{"scene", o.scene.scenes[0]}, {"voxels", model.voxel_count()}, {"rays", rays.size()},
+                              {"seed", o.seed},           {"edits", o.edits},                {"pairs", pairs},
+                              {"mismatches", mismatches}, {"ties", ties},                    {"passed", mismatches == 0}};
+        std::ofstream out(o.json);
+        out << doc.dump(2) << "\n";
+        if (!out) fail("cannot write --json ", o.json);
+    }
     return mismatches == 0 ? 0 : 1;
+}
+
+}  // namespace
+
+command add_check(CLI::App& parent) {
+    auto* app = parent.add_subcommand("check", "every structure x backend against the reference on the same rays");
+    auto o = std::make_shared<check_options>();
+    for (auto& b : backend_names()) o->backends += (o->backends.empty() ? "" : ",") + b;
+    o->scene.add_to(app, false);
+    app->add_option("--rays", o->rays, "rays to trace (half camera rays, half random)")
+        ->check(CLI::Range(std::size_t(1), std::size_t(100000000)))->capture_default_str();
+    app->add_option("--structures", o->structures, "structures to check")
+        ->check(names_from(all_structure_names(), "structure"))->capture_default_str();
+    app->add_option("--backends", o->backends, "backends to check")
+        ->check(names_from(backend_names(), "backend"))->capture_default_str();
+    app->add_option("--seed", o->seed, "seed of the random rays and edits")->capture_default_str();
+    app->add_option("--edits", o->edits, "random region edits applied before tracing")
+        ->check(CLI::Range(0, 100000))->capture_default_str();
+    app->add_option("--json", o->json, "also write the per-pair counts to this JSON file");
+    return {app, [o] { return check(*o); }};
 }
 
 }  // namespace voxray::tool

@@ -1,50 +1,35 @@
 // voxray: info, render, check and bench on any scene, structure and backend.
 #include <cstdio>
-#include <cstring>
 #include <exception>
 #include <string>
 
-#include "commands.hpp"
+#include "cli.hpp"
 #include "voxray/core/error.hpp"
 
-namespace {
-
-void usage() {
-    std::puts(
-        "usage: voxray <command> SCENE [options]\n"
-        "  SCENE: a .vox, .obj or .ply file (meshes take --resolution N, default 512), or builtin:NAME\n"
-        "         (builtin:terrain, builtin:menger; see README)\n"
-        "commands:\n"
-        "  info   SCENE [--structures A,B]\n"
-        "  render SCENE --structure S --backend B --out FILE.png [--width W --height H] [--view V]\n"
-        "  check  SCENE [--rays N] [--structures A,B] [--backends A,B] [--seed K] [--edits K]\n"
-        "  bench  SCENE --structure S --backend B [--rays primary|secondary|shadow]\n"
-        "         [--width W --height H] [--runs R] [--json FILE]\n"
-        "  bench  SCENE --structure brickmap --backend B --edits spheres|voxel [--threads T] [--runs FRAMES]\n"
-        "structures: dense, brickmap, embree-quads, embree-boxes    backends: cpu, cpu-scalar, opencl, vulkan");
-}
-
-}  // namespace
-
 int main(int argc, char** argv) {
-    if (argc < 2 || !std::strcmp(argv[1], "--help") || !std::strcmp(argv[1], "-h")) {
-        usage();
-        return argc < 2 ? 2 : 0;
-    }
-    std::string command = argv[1];
+    using namespace voxray::tool;
+    CLI::App app{"voxray: voxel ray tracing structures x backends on any scene.\n"
+                 "SCENE: a .vox, .obj or .ply file (meshes take --resolution) or builtin:NAME[:SIZE] "
+                 "(builtin:terrain, builtin:menger)"};
+    app.require_subcommand(1);
+    app.set_help_all_flag("--help-all", "help for every command");
+    std::vector<command> commands = {add_info(app), add_render(app), add_check(app), add_bench(app)};
     try {
-        if (command == "info") return voxray::tool::run_info(argc, argv);
-        if (command == "render") return voxray::tool::run_render(argc, argv);
-        if (command == "check") return voxray::tool::run_check(argc, argv);
-        if (command == "bench") return voxray::tool::run_bench(argc, argv);
-        std::fprintf(stderr, "voxray: unknown command '%s'\n", command.c_str());
-        usage();
-        return 2;
-    } catch (const voxray::error& e) {
-        std::fprintf(stderr, "voxray %s: error: %s\n", command.c_str(), e.what());
-        return 1;
-    } catch (const std::exception& e) {
-        std::fprintf(stderr, "voxray %s: unexpected error: %s\n", command.c_str(), e.what());
-        return 1;
+        app.parse(argc, argv);
+    } catch (const CLI::ParseError& e) {
+        return app.exit(e);
     }
+    for (auto& c : commands) {
+        if (!c.app->parsed()) continue;
+        try {
+            return c.run();
+        } catch (const voxray::error& e) {
+            std::fprintf(stderr, "voxray %s: error: %s\n", c.app->get_name().c_str(), e.what());
+            return 1;
+        } catch (const std::exception& e) {
+            std::fprintf(stderr, "voxray %s: unexpected error: %s\n", c.app->get_name().c_str(), e.what());
+            return 1;
+        }
+    }
+    return 2;
 }

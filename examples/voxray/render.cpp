@@ -1,8 +1,10 @@
 // voxray render: palette colour, one directional light with a shadow ray, sky on a miss.
+// The camera is one of 8 preset views around the scene, or free (--eye, --target, --fov).
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 
-#include "args.hpp"
+#include "cli.hpp"
 #include "commands.hpp"
 #include "engines.hpp"
 #include "png_writer.hpp"
@@ -20,18 +22,49 @@ glm::vec3 light_direction(int up_axis) {
     return glm::normalize(l);
 }
 
-int run_render(int argc, char** argv) {
-    args a(argc, argv, 2, {"structure", "backend", "out", "width", "height", "view", "resolution"});
-    if (a.positional().size() != 1) fail("render takes one SCENE");
-    if (!a.has("out")) fail("render needs --out FILE.png");
-    int width = int(a.number("width", 1280, 1, 16384)), height = int(a.number("height", 720, 1, 16384));
-    auto model = load_scene(a.positional()[0], int(a.number("resolution", 512, 1, 4096)));
-    auto structure = build_structure(a.get("structure", "dense"), model);
-    auto engine = structure->trace_on(a.get("backend", "cpu"));
+namespace {
 
-    std::fprintf(stderr, "tracing %d x %d on %s / %s ...\n", width, height, structure->name().c_str(), engine->device().c_str());
-    auto cam = auto_camera(model.bounds(), model.up_axis, int(a.number("view", 0, 0, 7)));
-    auto rays = primary_rays(cam, width, height);
+struct render_options {
+    scene_options scene;
+    std::string structure = "dense", backend = "cpu", out;
+    int width = 1280, height = 720, view = 0;
+    std::vector<float> eye, target;
+    float fov = 50.0f;
+};
+
+// Rays, hits, shadow rays and shadow hits, and the image: what a pixel costs.
+constexpr std::uint64_t bytes_per_pixel = 2 * sizeof(ray) + 2 * sizeof(hit) + 3;
+
+camera choose_camera(const render_options& o, const voxel_model& model) {
+    camera cam = auto_camera(model.bounds(), model.up_axis, o.view);
+    if (o.eye.empty()) return cam;
+    box3i b = model.bounds();
+    cam.position = {o.eye[0], o.eye[1], o.eye[2]};
+    cam.target = o.target.empty() ? (glm::vec3(b.min) + glm::vec3(b.max)) * 0.5f : glm::vec3(o.target[0], o.target[1], o.target[2]);
+    cam.up = glm::vec3(0.0f);
+    cam.up[model.up_axis] = 1.0f;
+    cam.fov_y_degrees = o.fov;
+    glm::vec3 forward = cam.target - cam.position;
+    if (!(glm::length(forward) > 0.0f)) fail("--eye and --target are the same point");
+    if (glm::length(glm::cross(glm::normalize(forward), cam.up)) < 1e-6f) {
+        cam.up = glm::vec3(0.0f);
+        cam.up[(model.up_axis + 1) % 3] = 1.0f;  // looking straight up or down
+    }
+    return cam;
+}
+
+int render(const render_options& o) {
+    require_writable(o.out, "--out");
+    require_memory(bytes_per_pixel * std::uint64_t(o.width) * std::uint64_t(o.height),
+                   "render " + std::to_string(o.width) + " x " + std::to_string(o.height) + " (" +
+                       std::to_string(bytes_per_pixel) + " bytes a pixel)");
+    auto model = load_scene(o.scene.scenes[0], o.scene.resolution);
+    std::fprintf(stderr, "building %s ...\n", o.structure.c_str());
+    auto structure = build_structure(o.structure, model);
+    auto engine = structure->trace_on(o.backend);
+
+    std::fprintf(stderr, "tracing %d x %d on %s / %s ...\n", o.width, o.height, structure->name().c_str(), engine->device().c_str());
+    auto rays = primary_rays(choose_camera(o, model), o.width, o.height);
     std::vector<hit> hits(rays.size()), shadow(rays.size());
     engine->closest_hit(rays, hits);
     glm::vec3 light = light_direction(model.up_axis);
@@ -54,10 +87,31 @@ int run_render(int argc, char** argv) {
         for (int k = 0; k < 3; ++k)
             rgb[i * 3 + k] = std::uint8_t(std::clamp(std::pow(c[k], 1.0f / 2.2f), 0.0f, 1.0f) * 255.0f + 0.5f);
     }
-    write_png(a.get("out", ""), width, height, rgb);
-    std::printf("wrote %s (%d x %d, %s on %s)\n", a.get("out", "").c_str(), width, height, structure->name().c_str(),
-                a.get("backend", "cpu").c_str());
+    write_png(o.out, o.width, o.height, rgb);
+    std::printf("wrote %s (%d x %d, %s on %s)\n", o.out.c_str(), o.width, o.height, structure->name().c_str(), o.backend.c_str());
     return 0;
+}
+
+}  // namespace
+
+command add_render(CLI::App& parent) {
+    auto* app = parent.add_subcommand("render", "render a PNG: palette colours, a sun with shadows, sky");
+    auto o = std::make_shared<render_options>();
+    o->scene.add_to(app, false);
+    app->add_option("--structure", o->structure, "structure to trace")
+        ->check(CLI::IsMember(all_structure_names()))->capture_default_str();
+    app->add_option("--backend", o->backend, "backend to trace on")->check(CLI::IsMember(backend_names()))->capture_default_str();
+    app->add_option("--out", o->out, "PNG file to write")->required();
+    app->add_option("--width", o->width, "image width")->check(CLI::Range(1, 16384))->capture_default_str();
+    app->add_option("--height", o->height, "image height")->check(CLI::Range(1, 16384))->capture_default_str();
+    auto* view = app->add_option("--view", o->view, "preset view around the scene")->check(CLI::Range(0, 7))->capture_default_str();
+    auto* eye = app->add_option("--eye", o->eye, "free camera position X,Y,Z (voxel units)")
+                    ->expected(3)->delimiter(',')->excludes(view);
+    app->add_option("--target", o->target, "point the free camera looks at (default: the scene's centre)")
+        ->expected(3)->delimiter(',')->needs(eye);
+    app->add_option("--fov", o->fov, "free camera's vertical field of view, degrees")
+        ->check(CLI::Range(1.0f, 179.0f))->needs(eye)->capture_default_str();
+    return {app, [o] { return render(*o); }};
 }
 
 }  // namespace voxray::tool

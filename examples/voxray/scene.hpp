@@ -11,7 +11,24 @@
 #include "voxray/model/voxel_model.hpp"
 #include "voxray/scenes/builtin.hpp"
 
+#include <CLI/CLI.hpp>
+
 namespace voxray::tool {
+
+// SCENE (one, or several for bench) and --resolution, as every command takes them.
+struct scene_options {
+    std::vector<std::string> scenes;
+    int resolution = 512;
+
+    void add_to(CLI::App* app, bool many) {
+        auto* opt = app->add_option("scene", scenes, many ? "one or more scenes (a file or builtin:NAME)" : "a .vox/.obj/.ply file or builtin:NAME")
+                        ->required();
+        if (!many) opt->expected(1);
+        app->add_option("--resolution", resolution, "voxels along a mesh's longest side")
+            ->check(CLI::Range(1, 4096))
+            ->capture_default_str();
+    }
+};
 
 inline voxel_model load_scene(const std::string& spec, int resolution) {
     auto start = std::chrono::steady_clock::now();
