@@ -97,15 +97,15 @@ VX_FN vx_na_state vx_naadf_step(VX_BLOB blob, vx_naadf g, vx_na_state s) {
 
     vx_mask go = live && !c.solid;
     vx_u32 k = vx_sel(c.level >= VX_NA_CHUNK_BITS, vx_u32_splat(VX_NA_CHUNK_AADF_BITS), vx_u32_splat(VX_NA_BLOCK_AADF_BITS));
-    vx_u32 field = (vx_u32_splat(1u) << k) - 1u;
+    vx_u32 one = vx_u32_splat(1u);  /* VX_NA_AADF_FIELD shifts 1u by the per-lane field width */
     vx_i32 size = vx_i32_splat(1) << c.level;
     vx_i32 mx = (gx & (0 - size)) - g.shx, my = (gy & (0 - size)) - g.shy, mz = (gz & (0 - size)) - g.shz;
-    vx_i32 lox = mx - vx_u2i((c.value >> k) & field) * size;
-    vx_i32 hix = mx + size + vx_u2i(c.value & field) * size;
-    vx_i32 loy = my - vx_u2i((c.value >> (3u * k)) & field) * size;
-    vx_i32 hiy = my + size + vx_u2i((c.value >> (2u * k)) & field) * size;
-    vx_i32 loz = mz - vx_u2i((c.value >> (5u * k)) & field) * size;
-    vx_i32 hiz = mz + size + vx_u2i((c.value >> (4u * k)) & field) * size;
+    vx_i32 lox = mx - vx_u2i(VX_NA_AADF_FIELD(c.value, one, k)) * size;
+    vx_i32 hix = mx + size + vx_u2i(VX_NA_AADF_FIELD(c.value, 0u, k)) * size;
+    vx_i32 loy = my - vx_u2i(VX_NA_AADF_FIELD(c.value, 3u, k)) * size;
+    vx_i32 hiy = my + size + vx_u2i(VX_NA_AADF_FIELD(c.value, 2u, k)) * size;
+    vx_i32 loz = mz - vx_u2i(VX_NA_AADF_FIELD(c.value, 5u, k)) * size;
+    vx_i32 hiz = mz + size + vx_u2i(VX_NA_AADF_FIELD(c.value, 4u, k)) * size;
     s.w = vx_dda_leave_box(s.w, s.dx, s.dy, s.dz, lox, loy, loz, hix, hiy, hiz, go);
 
     vx_mask outside = s.w.cx < 0 || s.w.cy < 0 || s.w.cz < 0 || s.w.cx >= g.ex || s.w.cy >= g.ey || s.w.cz >= g.ez;
