@@ -68,3 +68,25 @@ TEST(BrickmapLimits, FailedRegionEditLeavesCountMatchingContent) {
         EXPECT_EQ(m.get({10, 14, 10}), 7);
     }
 }
+
+// reserve() re-lays the blob out once, ahead: the bricks that follow are sent one by one,
+// not as whole-blob uploads after each doubling.
+TEST(BrickmapLimits, ReserveMakesRoomAheadSoLaterBricksAreIncremental) {
+    brickmap<> m(box3i{{0, 0, 0}, {128, 128, 128}}, {.initial_bricks = 4});
+    (void)m.take_dirty_ranges();
+    m.reserve(600);
+    EXPECT_GE(m.brick_capacity(), 600u);
+    auto after_reserve = m.take_dirty_ranges();
+    ASSERT_EQ(after_reserve.size(), 1u);  // the re-layout itself: the whole blob, once
+    EXPECT_EQ(after_reserve[0].count, m.blob().size());
+    std::size_t words = m.blob().size();
+    for (int i = 0; i < 500; ++i) {
+        m.set({8 * (i % 16), 8 * (i / 16 % 16), 8 * (i / 256)}, 3);
+        auto ranges = m.take_dirty_ranges();
+        std::uint64_t sent = 0;
+        for (auto& r : ranges) sent += r.count;
+        ASSERT_LE(sent, 2u * brickmap<>::codec::words) << "brick " << i;
+    }
+    EXPECT_EQ(m.blob().size(), words);
+    EXPECT_EQ(m.brick_count(), 500u);
+}
