@@ -73,7 +73,10 @@ TEST(BrickmapBounds, SphereWhollyOutsideBelowTheOriginIsAddedAndUploaded) {
     EXPECT_EQ(m.get({8, 8, 8}), 3);
     EXPECT_EQ(m.get({9, 9, 9}), 0);
     EXPECT_LE(m.bounds().min.x, -307);
+    (void)m.snapshot();  // moves the dirty set into the change log: still whole for the next take
+    EXPECT_TRUE(m.whole_blob_dirty());
     auto ranges = m.take_dirty_ranges();
+    EXPECT_FALSE(m.whole_blob_dirty());
     ASSERT_EQ(ranges.size(), 1u);  // the blob was re-laid out: all of it goes
     EXPECT_EQ(ranges[0].count, m.blob().size());
     EXPECT_EQ(std::int32_t(m.blob()[VX_BM_HEADER_ORIGIN]), m.bounds().min.x);

@@ -192,7 +192,11 @@ public:
         taken_ = frame.generation;
         return std::move(frame.ranges);
     }
-    bool whole_blob_dirty() const { return dirty_.whole(); }
+    // Whether the next take_dirty_ranges() returns the whole blob.
+    bool whole_blob_dirty() const {
+        std::shared_lock lock(locks_.grow);  // whole-blob marks and commits take it exclusively
+        return dirty_.whole() || log_.whole_since(taken_);
+    }
     // Drops unused pool and page capacity; the next growth doubles again.
     void shrink_to_fit() {
         std::unique_lock lock(locks_.grow);

@@ -54,13 +54,15 @@ public:
     // The words changed after generation g, sorted and coalesced; {0, blob_words} alone
     // when the whole blob changed since (or g is older than what the log still holds).
     std::vector<word_range> since(std::uint64_t g, std::uint32_t blob_words) const {
-        if (g < std::max(whole_at_, lost_at_)) return {{0, blob_words}};
+        if (whole_since(g)) return {{0, blob_words}};
         std::vector<word_range> parts;
         auto first = std::partition_point(entries_.begin(), entries_.end(),
                                           [&](const entry& e) { return e.generation <= g; });
         for (auto it = first; it != entries_.end(); ++it) parts.push_back(it->range);
         return sync::normalize_ranges(parts, blob_words);
     }
+
+    bool whole_since(std::uint64_t g) const { return g < std::max(whole_at_, lost_at_); }
 
 private:
     struct entry {
