@@ -159,19 +159,19 @@ void brickmap<Payload, E>::apply_batch(std::span<const edit> edits, unsigned thr
         edit_ctx ctx;
         std::shared_lock lock(locks_.grow);
         stop_on_failure(ctx, lock, next, groups, [&] {
-        for (;;) {
-            std::size_t g = next.fetch_add(1, std::memory_order_relaxed);
-            if (g >= groups) break;
-            std::uint64_t cell = keys[starts[g]] >> 20;
-            glm::uvec3 bc(std::uint32_t(cell % cells.x), std::uint32_t(cell / cells.x % cells.y),
-                          std::uint32_t(cell / cells.x / cells.y));
-            glm::ivec3 lo = origin + glm::ivec3(bc << unsigned(codec::bits));
-            for (std::size_t k = starts[g]; k < starts[g + 1]; ++k) {
-                const edit& e = edits[keys[k] & 0xFFFFF];
-                edit_op op = e.value == 0 ? edit_op::erase : e.op;
-                std::visit([&](const auto& r) { edit_region_brick(r, op, e.value, lo, ctx, lock); }, e.region);
+            for (;;) {
+                std::size_t g = next.fetch_add(1, std::memory_order_relaxed);
+                if (g >= groups) break;
+                std::uint64_t cell = keys[starts[g]] >> 20;
+                glm::uvec3 bc(std::uint32_t(cell % cells.x), std::uint32_t(cell / cells.x % cells.y),
+                              std::uint32_t(cell / cells.x / cells.y));
+                glm::ivec3 lo = origin + glm::ivec3(bc << unsigned(codec::bits));
+                for (std::size_t k = starts[g]; k < starts[g + 1]; ++k) {
+                    const edit& e = edits[keys[k] & 0xFFFFF];
+                    edit_op op = e.value == 0 ? edit_op::erase : e.op;
+                    std::visit([&](const auto& r) { edit_region_brick(r, op, e.value, lo, ctx, lock); }, e.region);
+                }
             }
-        }
         });
         flush(ctx);  // under the shared lock: no settle or take can see half an edit
         lock.unlock();
