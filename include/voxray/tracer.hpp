@@ -19,6 +19,13 @@
 // and update(structure) on a non-const structure then sends only those words (cost
 // proportional to the edit). A structure whose blob changed size, or one without dirty
 // tracking, is sent whole.
+//
+// A structure edited from other threads offers generations instead (brickmap does):
+//   frame snapshot() const;              // {lock, blob, generation}: writers wait meanwhile
+//   frame changes_since(generation);     // {lock, blob, ranges changed since, generation}
+// The tracer then reads the blob only under the frame's lock, and remembers the
+// generation it holds: each of several tracers gets exactly what it is missing, and
+// the first update after construction sends only what changed since.
 #pragma once
 #include <concepts>
 #include <cstdint>
@@ -66,6 +73,14 @@ concept editable_structure = structure<S> && tracks_dirty_ranges<S> && requires(
     s.apply(r, edit_op::fill, typename S::payload_type{});
 };
 
+// See the top comment: consistent frames and per-consumer generations.
+template <class S>
+concept syncs_by_generation = requires(const S& c, S& s, std::uint64_t g) {
+    c.snapshot().blob;
+    c.snapshot().generation;
+    s.changes_since(g).ranges;
+};
+
 template <class Backend, class Structure>
 class tracer {
     static_assert(backend<Backend>,
@@ -80,11 +95,19 @@ public:
     using structure_type = Structure;
 
     explicit tracer(const Structure& structure, typename Backend::options options = {}) : engine_(options) {
-        upload(structure.blob());
+        update(structure);
     }
 
     // Sends the structure's current contents to the backend, whole.
-    void update(const Structure& structure) { upload(structure.blob()); }
+    void update(const Structure& structure) {
+        if constexpr (syncs_by_generation<Structure>) {
+            auto frame = structure.snapshot();  // writers wait until the upload is done
+            upload(frame.blob);
+            generation_ = frame.generation;
+        } else {
+            upload(structure.blob());
+        }
+    }
 
     // Sends only the words the structure's edits changed since the last update (taking
     // its dirty ranges), or everything when the blob's size changed since the last upload.
@@ -92,8 +115,15 @@ public:
     void update(Structure& structure)
         requires tracks_dirty_ranges<Structure>
     {
-        auto ranges = structure.take_dirty_ranges();  // always taken, so they never pile up
-        update(structure, std::span<const word_range>(ranges));
+        if constexpr (syncs_by_generation<Structure>) {
+            auto frame = structure.changes_since(generation_);  // writers wait meanwhile
+            if (frame.blob.size() != uploaded_words_) upload(frame.blob);
+            else engine_.update_ranges(frame.blob, frame.ranges);
+            generation_ = frame.generation;
+        } else {
+            auto ranges = structure.take_dirty_ranges();  // always taken, so they never pile up
+            update(structure, std::span<const word_range>(ranges));
+        }
     }
 
     // The same with ranges taken by the caller: several tracers of one structure (one per
@@ -131,6 +161,7 @@ private:
 
     typename Backend::template engine<typename Structure::kernel> engine_;
     std::size_t uploaded_words_ = 0;
+    std::uint64_t generation_ = 0;  // of the structure's content this tracer holds
 };
 
 }  // namespace voxray

@@ -160,7 +160,9 @@ TEST(BrickmapPool, GrowsFromTinyCapacityAndRecycles) {
 
 TEST(BrickmapEdit, RegionsMatchReference) {
     box3i world{{-7, 3, -20}, {90, 70, 51}};
-    brickmap<std::uint16_t, 8> m(world);
+    // Regions reach outside the world: clipped here, like the reference (growth has its
+    // own tests in test_brickmap_bounds.cpp).
+    brickmap<std::uint16_t, 8> m(world, {.outside = outside_edits::clip});
     reference<std::uint16_t> ref(world);
     std::mt19937 g(42);
     auto rnd = [&](int lo, int hi) { return lo + int(g() % unsigned(hi - lo)); };
@@ -215,7 +217,7 @@ TEST(BrickmapEdit, RegionsMatchReference) {
 
 TEST(BrickmapEdit, BatchMatchesSequentialReference) {
     box3i world{{0, 0, 0}, {160, 96, 120}};
-    brickmap<> m(world, {8, 1});
+    brickmap<> m(world, {8, 1, outside_edits::clip});  // the reference clips too
     reference<std::uint8_t> ref(world);
     std::mt19937 g(9);
     for (int round = 0; round < 10; ++round) {
@@ -239,7 +241,7 @@ TEST(BrickmapEdit, BatchMatchesSequentialReference) {
 
 TEST(BrickmapEdit, ConcurrentDisjointAndOverlapping) {
     box3i world{{0, 0, 0}, {128, 96, 80}};
-    brickmap<> m(world, {4, 1});
+    brickmap<> m(world, {4, 1, outside_edits::clip});  // the reference clips too
     reference<std::uint8_t> ref(world);
     constexpr int threads = 4;
     // Phase 1: each thread owns an x slab (boundaries inside bricks, so threads share
@@ -423,6 +425,7 @@ TEST(BrickmapFile, RoundTripAndCorruption) {
     fnv64 sum;
     sum.bytes(b.data(), 40);
     sum.words(reinterpret_cast<const std::uint32_t*>(b.data() + 48), words_count);
+    sum.bytes(b.data() + 48 + 4 * std::size_t(words_count), b.size() - 48 - 4 * std::size_t(words_count));  // palette
     std::memcpy(b.data() + 40, &sum.h, 8);
     expect_error(b, b.size(), "bad brick index");
     std::filesystem::remove(path);
@@ -439,5 +442,6 @@ TEST(BrickmapBuild, HugeWorldIsCheap) {
     EXPECT_EQ(m.get({-8192, -8192, -8192}), 5);
     EXPECT_EQ(m.get({0, 0, 20}), 6);
     EXPECT_EQ(m.get({0, 0, 21}), 0);
-    EXPECT_THROW(m.set({8192, 0, 0}, 1), voxray::error);
+    brickmap<> fixed(m.bounds(), {.outside = outside_edits::fail});
+    EXPECT_THROW(fixed.set({8192, 0, 0}, 1), voxray::error);
 }

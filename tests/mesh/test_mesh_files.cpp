@@ -182,6 +182,10 @@ TEST(PlyReader, MalformedFilesThrow) {
         "property float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n",
         "bad.ply", "truncated", "4000000000");
     bad(ascii.substr(0, ascii.rfind("2 0 1")), "bad.ply:22", "end of file");
+    // Each coordinate exactly once: 'x y y' used to load with z silently 0.
+    std::string twice = ascii;
+    twice.replace(twice.find("property float z"), 16, "property float y");
+    bad(twice, "bad.ply:7", "coordinate y", "declared twice");
 }
 
 TEST(MeshLoader, RejectsUnknownFilesAndResolutions) {

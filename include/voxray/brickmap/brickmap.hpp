@@ -23,9 +23,15 @@
 // Solid cells keep the payload in bits 1..31, so a uint32_t payload >= 2^31 cannot be a
 // solid cell: such bricks simply stay bricks. Voxels outside bounds() are never set, so a
 // brick that sticks out of the world never collapses.
+//
+// Bounds: a fill reaching outside bounds() grows the world by default (see
+// world_growth.hpp for the policy and options::outside for the alternatives). Growth
+// takes the exclusive lock and moves the world's min corner by whole pages, so edits
+// name bricks by absolute voxel position and find their top cell under the shared lock.
 #pragma once
 #include <atomic>
 #include <chrono>
+#include <cmath>
 #include <cstdint>
 #include <mutex>
 #include <shared_mutex>
@@ -37,12 +43,15 @@
 
 #include "voxray/brickmap/brick_codec.hpp"
 #include "voxray/brickmap/brick_pool.hpp"
+#include "voxray/brickmap/change_log.hpp"
 #include "voxray/brickmap/dirty_set.hpp"
 #include "voxray/edit/regions.hpp"
 #include "voxray/brickmap/top_grid.hpp"
+#include "voxray/brickmap/world_growth.hpp"
 #include "voxray/core/box.hpp"
 #include "voxray/core/error.hpp"
 #include "voxray/model/build_threads.hpp"
+#include "voxray/model/palette.hpp"
 #include "voxray/model/voxel_model.hpp"
 #include "voxray/core/blob.hpp"
 #include "voxray/core/word_range.hpp"
@@ -68,10 +77,19 @@ public:
     struct options {
         std::uint32_t initial_bricks = 64;  // pool capacity before the first growth
         std::uint32_t initial_pages = 1;
+        outside_edits outside = outside_edits::grow;  // fills outside bounds(): see world_growth.hpp
+        // Spare capacity build() keeps, as a fraction of the bricks and pages it used, so
+        // that the first new bricks after a build do not re-lay the blob out (a re-layout
+        // makes every tracer receive the whole blob again).
+        float build_headroom = 0.25f;
+        // The largest blob this map may grow to (at most, and by default, 8 GiB less a
+        // word: 32-bit word offsets). Growth fills up to it exactly, not by doubling past it.
+        std::uint64_t max_blob_bytes = (max_blob_words - 1) * 4;
     };
 
     brickmap() : brickmap(box3i{}) {}
-    explicit brickmap(box3i world, options opt = {}) {
+    explicit brickmap(box3i world, options opt = {}) : outside_(opt.outside), phase_(world.min) {
+        limit_words_ = std::min<std::uint64_t>(opt.max_blob_bytes / 4, max_blob_words - 1);
         top_grid::init(world, codec::bits, codec::payload_bits, codec::words, codec::occupancy_words,
                        std::max(opt.initial_pages, 1u), std::max(opt.initial_bricks, 1u));
         pool_.reset(brick_capacity());
@@ -86,8 +104,8 @@ public:
 
     // ---- single voxels (thread-safe) ----
     Payload get(glm::ivec3 p) const {
-        if (!world_.contains(p)) return 0;
         std::shared_lock lock(locks_.grow);
+        if (!world_.contains(p)) return 0;
         glm::uvec3 q(p - world_.min);
         std::uint32_t co = find_cell(q >> unsigned(codec::bits));
         if (!co) return 0;
@@ -95,14 +113,12 @@ public:
         if (!(c & VX_BM_CELL_IS_BRICK)) return Payload(VX_BM_CELL_VALUE(c));
         return codec::get(brick_ptr(VX_BM_CELL_VALUE(c)), local_index(q));
     }
-    // Sets voxel p (inside bounds(), else voxray::error) to v; 0 erases.
+    // Sets voxel p to v; 0 erases. Outside bounds(), see options::outside.
     void set(glm::ivec3 p, Payload v) {
-        if (!world_.contains(p))
-            fail("brickmap: voxel (", p.x, ", ", p.y, ", ", p.z, ") is outside the world");
-        glm::uvec3 q(p - world_.min);
-        run r{local_index(q), 1};
+        if (v) make_room(regions::box64{glm::i64vec3(p), glm::i64vec3(p) + std::int64_t(1)});
+        run r{local_of(p), 1};
         edit_ctx ctx;
-        edit_with_growth(q >> unsigned(codec::bits), v ? edit_op::fill : edit_op::erase, v, false, ctx,
+        edit_with_growth(p, v ? edit_op::fill : edit_op::erase, v, false, ctx,
                          [&](std::uint32_t* brick) { return codec::write_run(brick, r.first, 1, r.op(v), v); });
     }
 
@@ -142,23 +158,58 @@ public:
         std::unique_lock lock(locks_.grow);
         settle_locked();
     }
-    // Word ranges changed since the last take (settles first). A single range covering
-    // the whole blob means "upload everything": the blob was re-laid out or resized.
-    std::vector<word_range> take_dirty_ranges() {
+
+    // A consistent view of the blob while other threads edit: writers wait (the exclusive
+    // lock) for as long as the frame lives, so upload or copy what you need and let it go.
+    // `ranges`: the words changed after the generation asked for (the whole blob when it
+    // was re-laid out since); `generation`: what to ask for next time.
+    struct sync_frame {
+        std::unique_lock<std::shared_mutex> lock;
+        std::span<const std::uint32_t> blob;
+        std::vector<word_range> ranges;
+        std::uint64_t generation = 0;
+        std::uint64_t voxels = 0;
+    };
+    // The blob as it is (no ranges) and its generation: what a new consumer starts from.
+    sync_frame snapshot() const {
+        std::unique_lock lock(locks_.grow);
+        commit_locked();
+        return {std::move(lock), words_, {}, log_.generation(), voxel_count()};
+    }
+    // The blob and the words changed after generation g (settles first). Any number of
+    // consumers each keep their own g (tracer::update does).
+    sync_frame changes_since(std::uint64_t g) {
         std::unique_lock lock(locks_.grow);
         settle_locked();
-        for (auto b : dirty_.bricks()) meta_[b] &= ~dirty_bit;
-        return dirty_.take(std::uint32_t(words_.size()), bricks_off_, codec::words);
+        commit_locked();
+        return {std::move(lock), words_, log_.since(g, std::uint32_t(words_.size())), log_.generation(), voxel_count()};
     }
-    bool whole_blob_dirty() const { return dirty_.whole(); }
-    // Drops unused pool and page capacity (build() does this); the next growth doubles again.
+    // Word ranges changed since the last take_dirty_ranges() (one consumer; with several,
+    // each asks changes_since). A single range covering the whole blob means "upload
+    // everything": the blob was re-laid out or resized.
+    std::vector<word_range> take_dirty_ranges() {
+        auto frame = changes_since(taken_);
+        taken_ = frame.generation;
+        return std::move(frame.ranges);
+    }
+    // Whether the next take_dirty_ranges() returns the whole blob.
+    bool whole_blob_dirty() const {
+        std::shared_lock lock(locks_.grow);  // whole-blob marks and commits take it exclusively
+        return dirty_.whole() || log_.whole_since(taken_);
+    }
+    // Drops unused pool and page capacity; the next growth doubles again.
     void shrink_to_fit() {
         std::unique_lock lock(locks_.grow);
-        std::uint32_t used = std::max(pool_.used(), 1u);
-        relayout(std::max(page_used_, 1u), used, used);
-        pool_.shrink_to(used);
-        meta_.resize(used);
-        owner_.resize(used);
+        fit_locked(0.0);
+    }
+    // Capacity for at least `bricks` bricks and `pages` pages now (one re-layout, so one
+    // whole upload now rather than one per growth later).
+    void reserve(std::uint32_t bricks, std::uint32_t pages = 0) {
+        std::unique_lock lock(locks_.grow);
+        pages = std::uint32_t(std::min<std::uint64_t>(pages, std::max<std::uint64_t>(page_table_words(), 1)));
+        if (bricks <= brick_capacity() && pages <= page_capacity_) return;
+        relayout(std::max(pages, page_capacity_), std::max(bricks, brick_capacity()));
+        resize_brick_state();
         dirty_.mark_whole();
     }
 
@@ -174,7 +225,21 @@ public:
     std::uint64_t voxel_count() const {
         return std::uint64_t(std::atomic_ref<std::int64_t>(const_cast<std::int64_t&>(voxel_count_)).load());
     }
-    box3i bounds() const { return world_; }
+    box3i bounds() const {
+        std::shared_lock lock(locks_.grow);
+        return world_;
+    }
+    // Colours and materials of the payload values 1..255 (build() takes the model's;
+    // files carry it). Payloads above 255 have no entry.
+    voxray::palette palette() const {
+        std::shared_lock lock(locks_.grow);
+        return palette_;
+    }
+    void set_palette(const voxray::palette& p) {
+        std::unique_lock lock(locks_.grow);
+        palette_ = p;
+    }
+    outside_edits outside_policy() const { return outside_; }
     double build_seconds() const { return build_seconds_; }
     std::uint64_t brick_count() const { return pool_.live(); }
     std::uint64_t free_bricks() const { return pool_.free_in_ring(); }
@@ -210,6 +275,9 @@ private:
         locks& operator=(const locks&) { return *this; }
     };
 
+    // A voxel's index in its brick, from absolute coordinates: the world origin moves by
+    // whole pages only, so its alignment to bricks is that of the first origin (phase_).
+    std::uint32_t local_of(glm::ivec3 p) const { return local_index(glm::uvec3(p) - glm::uvec3(phase_)); }
     static std::uint32_t local_index(glm::uvec3 q) {
         constexpr std::uint32_t m = BrickEdge - 1;
         return codec::index(q.x & m, q.y & m, q.z & m);
@@ -278,88 +346,32 @@ private:
     // it covers every voxel of the brick, so a solid/empty cell can take it directly.
     template <class Write>
     status edit_brick(glm::uvec3 bc, edit_op op, Payload v, bool covered, edit_ctx& ctx, Write&& write,
-                      bool uniform = true) {
-        bool need = false;
-        std::uint32_t co = op == edit_op::fill ? make_cell(bc, ctx, need) : find_cell(bc);
-        if (!co) return need ? status::need_pages : status::ok;
-        std::atomic_ref<std::uint32_t> cell(words_[co]);
-        for (;;) {
-            std::uint32_t c = cell.load(std::memory_order_acquire);
-            if (c & VX_BM_CELL_IS_BRICK) {
-                std::uint32_t b = VX_BM_CELL_VALUE(c);
-                std::uint32_t m = lock_brick(b);
-                typename codec::result r = write(brick_ptr(b));
-                std::uint32_t n = (m & count_mask) + std::uint32_t(r.delta);
-                m = (m & ~count_mask) | n;
-                if (r.changed && !(m & dirty_bit)) { m |= dirty_bit; ctx.bricks.push_back(b); }
-                if ((n == 0 || n == full) && !(m & pending_bit)) { m |= pending_bit; ctx.pending.push_back(b); }
-                ctx.delta += r.delta;
-                unlock_brick(b, m);
-                return status::ok;
-            }
-            auto s = Payload(VX_BM_CELL_VALUE(c));
-            if (s == 0 && op != edit_op::fill) return status::ok;
-            if (uniform && s != 0 && op != edit_op::erase && s == v) return status::ok;
-            if (uniform && covered && (op == edit_op::erase || fits_solid(v))) {
-                std::uint32_t nc = op == edit_op::erase ? 0u : VX_BM_SOLID_CELL(std::uint32_t(v));
-                if (cell.compare_exchange_strong(c, nc, std::memory_order_acq_rel)) {
-                    ctx.words.push_back(co);
-                    ctx.delta += std::int64_t(full) * ((nc ? 1 : 0) - (c ? 1 : 0));
-                    return status::ok;
-                }
-                continue;
-            }
-            std::uint32_t b = pool_.allocate();
-            if (b == brick_pool::none) return status::need_bricks;
-            std::uint32_t* brick = brick_ptr(b);
-            if (s) codec::fill_solid(brick, s);
-            std::atomic_ref<std::uint32_t> meta(meta_[b]);  // private until the cell is published
-            meta.store((meta.load(std::memory_order_relaxed) & dirty_bit) | (s ? full : 0u), std::memory_order_relaxed);
-            if (!cell.compare_exchange_strong(c, VX_BM_BRICK_CELL(b), std::memory_order_acq_rel)) {
-                if (s) codec::clear(brick);
-                meta.store(meta.load(std::memory_order_relaxed) & dirty_bit, std::memory_order_relaxed);
-                pool_.recycle(b);
-                continue;
-            }
-            owner_[b] = co;
-            ctx.words.push_back(co);
-            // The whole brick is new on the device: make sure it is uploaded.
-            std::uint32_t m = lock_brick(b);
-            if (!(m & dirty_bit)) { m |= dirty_bit; ctx.bricks.push_back(b); }
-            unlock_brick(b, m);
-        }
-    }
+                      bool uniform = true);
 
-    // edit_brick under a shared lock, growing (exclusive) and retrying when needed.
+    // edit_brick of the brick holding voxel p under a shared lock, growing the pool
+    // (exclusive) and retrying when needed; nothing when p is outside the world.
     template <class Write>
-    void edit_with_growth(glm::uvec3 bc, edit_op op, Payload v, bool covered, edit_ctx& ctx, Write&& write,
+    void edit_with_growth(glm::ivec3 p, edit_op op, Payload v, bool covered, edit_ctx& ctx, Write&& write,
                           bool uniform = true) {
         for (;;) {
             std::shared_lock lock(locks_.grow);
-            status st = edit_brick(bc, op, v, covered, ctx, write, uniform);
+            if (!world_.contains(p)) return flush(ctx);
+            status st = edit_brick(brick_of(p), op, v, covered, ctx, write, uniform);
             if (st == status::ok) return flush(ctx);  // under the shared lock, see flush
             std::uint32_t seen = st == status::need_bricks ? top_grid::brick_capacity_ : page_capacity_;
+            flush(ctx);  // a snapshot taken while we wait sees counts that match the blob
             lock.unlock();
             grow(st, seen);
         }
     }
-    void grow(status st, std::uint32_t seen) {
-        std::unique_lock lock(locks_.grow);
-        if (st == status::need_bricks) {
-            if (top_grid::brick_capacity_ != seen) return;  // another thread grew it
-            std::uint64_t cap = std::max<std::uint64_t>(2ull * seen, 16);
-            check_limit("brickmap brick count", cap, std::uint64_t(1) << 31);
-            relayout(page_capacity_, std::uint32_t(cap));
-            pool_.grow_to(top_grid::brick_capacity_);
-            meta_.resize(top_grid::brick_capacity_, 0);
-            owner_.resize(top_grid::brick_capacity_, 0);
-        } else {
-            if (page_capacity_ != seen) return;
-            relayout(std::uint32_t(std::min<std::uint64_t>(2ull * seen, page_table_words())),
-                     top_grid::brick_capacity_);
-        }
-        dirty_.mark_whole();
-    }
+    // Capacity and world growth (brickmap_capacity.hpp); all but make_room run with the
+    // exclusive lock held or take it.
+    void fit_locked(double headroom);
+    void resize_brick_state();
+    void make_room(const regions::box64& need);
+    void grow(status st, std::uint32_t seen);
+
+    glm::uvec3 brick_of(glm::ivec3 p) const { return glm::uvec3(p - world_.min) >> unsigned(codec::bits); }
 
     void settle_locked() {
         for (auto b : pending_) {
@@ -381,10 +393,14 @@ private:
     }
 
     template <class Region>
-    void bricks_of(const Region& region, std::vector<glm::uvec3>& list) const;
+    void bricks_of(const Region& region, std::vector<glm::ivec3>& list) const;
     template <class Region>
-    void edit_region_brick(const Region& region, edit_op op, Payload value, glm::uvec3 bc, edit_ctx& ctx,
+    void edit_region_brick(const Region& region, edit_op op, Payload value, glm::ivec3 lo, edit_ctx& ctx,
                            std::shared_lock<std::shared_mutex>& lock);
+
+    template <class Body>
+    void stop_on_failure(edit_ctx& ctx, std::shared_lock<std::shared_mutex>& lock, std::atomic<std::size_t>& next,
+                         std::size_t end, Body&& body);
 
     template <class Region>
     bool covers(const Region& region, const box3i& bb) const {
@@ -397,16 +413,30 @@ private:
         return true;
     }
 
-    std::vector<std::uint32_t> meta_;  // per brick, see the diagram
+    // Moves the dirty set into the change log (exclusive lock held). The dirty bits of
+    // meta_ de-duplicate bricks in the set, so they go with it. Sync bookkeeping only,
+    // hence callable from const snapshots: meta_, dirty_ and log_ are mutable for it.
+    void commit_locked() const {
+        for (auto b : dirty_.bricks()) meta_[b] &= ~dirty_bit;
+        log_.commit(dirty_, std::uint32_t(words_.size()), bricks_off_, codec::words);
+    }
+
+    mutable std::vector<std::uint32_t> meta_;  // per brick, see the diagram
     std::vector<std::uint32_t> owner_; // per brick: word offset of the cell pointing to it
     brick_pool pool_;
-    dirty_set dirty_;
+    mutable dirty_set dirty_;
+    mutable change_log log_;
+    std::uint64_t taken_ = 0;  // generation of the last take_dirty_ranges()
+    voxray::palette palette_;
     std::vector<std::uint32_t> pending_;
     std::int64_t voxel_count_ = 0;
     double build_seconds_ = 0;
+    outside_edits outside_ = outside_edits::grow;
+    glm::ivec3 phase_{0};  // the world's min corner at construction (see local_of)
     mutable locks locks_;
 };
 
 }  // namespace voxray
 
+#include "voxray/brickmap/brickmap_capacity.hpp"
 #include "voxray/brickmap/brickmap_edit.hpp"

@@ -18,7 +18,7 @@ namespace voxray {
 
 template <class Payload, int E>
 template <class Region>
-void brickmap<Payload, E>::bricks_of(const Region& region, std::vector<glm::uvec3>& list) const {
+void brickmap<Payload, E>::bricks_of(const Region& region, std::vector<glm::ivec3>& list) const {
     box3i rb = region.bounds();
     box3i bb{glm::max(rb.min, world_.min), glm::min(rb.max, world_.max)};
     if (bb.empty()) return;
@@ -28,18 +28,17 @@ void brickmap<Payload, E>::bricks_of(const Region& region, std::vector<glm::uvec
         for (unsigned y = b0.y; y <= b1.y; ++y)
             for (unsigned x = b0.x; x <= b1.x; ++x) {
                 glm::ivec3 lo = world_.min + glm::ivec3(glm::uvec3(x, y, z) << bits);
-                if (region.touches(box3i{lo, lo + E})) list.push_back({x, y, z});
+                if (region.touches(box3i{lo, lo + E})) list.push_back(lo);
             }
 }
 
-// One region edit on one brick: x runs of the region inside the brick, then one
-// locked edit_brick (growing, with `lock` released, when the pool or pages are full).
+// One region edit on the brick whose min corner is voxel lo: x runs of the region inside
+// the brick, then one locked edit_brick (growing, with `lock` released, when the pool or
+// pages are full). Bricks are named by position: the world may grow while unlocked.
 template <class Payload, int E>
 template <class Region>
-void brickmap<Payload, E>::edit_region_brick(const Region& region, edit_op op, Payload value, glm::uvec3 bc,
+void brickmap<Payload, E>::edit_region_brick(const Region& region, edit_op op, Payload value, glm::ivec3 lo,
                                              edit_ctx& ctx, std::shared_lock<std::shared_mutex>& lock) {
-    constexpr unsigned bits = unsigned(codec::bits);
-    glm::ivec3 lo = world_.min + glm::ivec3(bc << bits);
     box3i full_box{lo, lo + E};
     box3i rb = region.bounds();
     box3i q{glm::max(glm::max(full_box.min, rb.min), world_.min), glm::min(glm::min(full_box.max, rb.max), world_.max)};
@@ -64,12 +63,30 @@ void brickmap<Payload, E>::edit_region_brick(const Region& region, edit_op op, P
         return r;
     };
     for (;;) {
-        status st = edit_brick(bc, op, value, covered, ctx, write);
+        status st = edit_brick(brick_of(lo), op, value, covered, ctx, write);
         if (st == status::ok) return;
         std::uint32_t seen = st == status::need_bricks ? top_grid::brick_capacity_ : page_capacity_;
+        flush(ctx);  // a snapshot taken while we wait sees counts that match the blob
         lock.unlock();
         grow(st, seen);
         lock.lock();
+    }
+}
+
+// Runs a worker's loop; when it throws (the blob limit, say), the other workers stop at
+// their next brick and this one's changes are published before the error goes on, so a
+// failed edit leaves the map consistent: whole bricks applied, counts matching the blob.
+template <class Payload, int E>
+template <class Body>
+void brickmap<Payload, E>::stop_on_failure(edit_ctx& ctx, std::shared_lock<std::shared_mutex>& lock,
+                                           std::atomic<std::size_t>& next, std::size_t end, Body&& body) {
+    try {
+        body();
+    } catch (...) {
+        next.store(end);
+        if (!lock.owns_lock()) lock.lock();
+        flush(ctx);
+        throw;
     }
 }
 
@@ -77,19 +94,25 @@ template <class Payload, int E>
 template <class Region>
 void brickmap<Payload, E>::apply(const Region& region, edit_op op, Payload value, unsigned threads) {
     if (value == 0) op = edit_op::erase;  // fill or paint with 0 = erase (only where solid)
-    std::vector<glm::uvec3> list;
-    bricks_of(region, list);
+    if (op == edit_op::fill) make_room(region.exact_bounds());
+    std::vector<glm::ivec3> list;
+    {
+        std::shared_lock lock(locks_.grow);
+        bricks_of(region, list);
+    }
     // Below ~16 bricks a second thread costs more to start than it saves.
     unsigned n = resolve_build_threads(threads, list.size() / 16);
     std::atomic<std::size_t> next{0};
     run_build_threads(n, [&](unsigned) {
         edit_ctx ctx;
         std::shared_lock lock(locks_.grow);
-        for (;;) {
-            std::size_t k = next.fetch_add(1, std::memory_order_relaxed);
-            if (k >= list.size()) break;
-            edit_region_brick(region, op, value, list[k], ctx, lock);
-        }
+        stop_on_failure(ctx, lock, next, list.size(), [&] {
+            for (;;) {
+                std::size_t k = next.fetch_add(1, std::memory_order_relaxed);
+                if (k >= list.size()) break;
+                edit_region_brick(region, op, value, list[k], ctx, lock);
+            }
+        });
         flush(ctx);  // under the shared lock: no settle or take can see half an edit
         lock.unlock();
     });
@@ -105,14 +128,24 @@ void brickmap<Payload, E>::apply_batch(std::span<const edit> edits, unsigned thr
         apply_batch(edits.first(std::size_t(1) << 19), threads);
         return apply_batch(edits.subspan(std::size_t(1) << 19), threads);
     }
+    for (const edit& e : edits)
+        if (e.value != 0 && e.op == edit_op::fill) std::visit([&](const auto& r) { make_room(r.exact_bounds()); }, e.region);
     std::vector<std::uint64_t> keys;
-    std::vector<glm::uvec3> list;
+    std::vector<glm::ivec3> list;
+    // Keys are relative to the world as it is now and decoded to positions with the same
+    // origin: growth by another thread meanwhile moves the origin, not the positions.
+    std::shared_lock snapshot_lock(locks_.grow);
+    const glm::ivec3 origin = world_.min;
+    const glm::uvec3 cells = cells_;
     for (std::size_t i = 0; i < edits.size(); ++i) {
         list.clear();
         std::visit([&](const auto& r) { bricks_of(r, list); }, edits[i].region);
-        for (auto bc : list)
-            keys.push_back(((bc.x + std::uint64_t(cells_.x) * (bc.y + std::uint64_t(cells_.y) * bc.z)) << 20) | i);
+        for (auto lo : list) {
+            glm::uvec3 bc = brick_of(lo);
+            keys.push_back(((bc.x + std::uint64_t(cells.x) * (bc.y + std::uint64_t(cells.y) * bc.z)) << 20) | i);
+        }
     }
+    snapshot_lock.unlock();
     std::sort(keys.begin(), keys.end());
     // Group starts: a new brick begins where the key without the edit index changes.
     std::vector<std::size_t> starts;
@@ -125,18 +158,21 @@ void brickmap<Payload, E>::apply_batch(std::span<const edit> edits, unsigned thr
     run_build_threads(n, [&](unsigned) {
         edit_ctx ctx;
         std::shared_lock lock(locks_.grow);
-        for (;;) {
-            std::size_t g = next.fetch_add(1, std::memory_order_relaxed);
-            if (g >= groups) break;
-            std::uint64_t cell = keys[starts[g]] >> 20;
-            glm::uvec3 bc(std::uint32_t(cell % cells_.x), std::uint32_t(cell / cells_.x % cells_.y),
-                          std::uint32_t(cell / cells_.x / cells_.y));
-            for (std::size_t k = starts[g]; k < starts[g + 1]; ++k) {
-                const edit& e = edits[keys[k] & 0xFFFFF];
-                edit_op op = e.value == 0 ? edit_op::erase : e.op;
-                std::visit([&](const auto& r) { edit_region_brick(r, op, e.value, bc, ctx, lock); }, e.region);
+        stop_on_failure(ctx, lock, next, groups, [&] {
+            for (;;) {
+                std::size_t g = next.fetch_add(1, std::memory_order_relaxed);
+                if (g >= groups) break;
+                std::uint64_t cell = keys[starts[g]] >> 20;
+                glm::uvec3 bc(std::uint32_t(cell % cells.x), std::uint32_t(cell / cells.x % cells.y),
+                              std::uint32_t(cell / cells.x / cells.y));
+                glm::ivec3 lo = origin + glm::ivec3(bc << unsigned(codec::bits));
+                for (std::size_t k = starts[g]; k < starts[g + 1]; ++k) {
+                    const edit& e = edits[keys[k] & 0xFFFFF];
+                    edit_op op = e.value == 0 ? edit_op::erase : e.op;
+                    std::visit([&](const auto& r) { edit_region_brick(r, op, e.value, lo, ctx, lock); }, e.region);
+                }
             }
-        }
+        });
         flush(ctx);  // under the shared lock: no settle or take can see half an edit
         lock.unlock();
     });
@@ -148,12 +184,11 @@ void brickmap<Payload, E>::apply_line(glm::ivec3 a, glm::ivec3 b, int radius, ed
                                       unsigned threads) {
     if (radius > 0) return apply(regions::capsule{a, b, radius}, op, v, threads);
     if (v == 0) op = edit_op::erase;
+    if (op == edit_op::fill) make_room(regions::capsule{a, b, 0}.exact_bounds());
     edit_ctx ctx;
-    regions::line_voxels(a, b, [&](glm::ivec3 p) {
-        if (!world_.contains(p)) return;
-        glm::uvec3 q(p - world_.min);
-        std::uint32_t i = local_index(q);
-        edit_with_growth(q >> unsigned(codec::bits), op, v, false, ctx,
+    regions::line_voxels_in(a, b, bounds(), [&](glm::ivec3 p) {
+        std::uint32_t i = local_of(p);
+        edit_with_growth(p, op, v, false, ctx,
                          [&](std::uint32_t* brick) { return codec::write_run(brick, i, 1, op, v); });
     });
     settle();
@@ -161,8 +196,11 @@ void brickmap<Payload, E>::apply_line(glm::ivec3 a, glm::ivec3 b, int radius, ed
 
 template <class Payload, int E>
 void brickmap<Payload, E>::copy_region(box3i src, glm::ivec3 offset, edit_op op, bool replace) {
-    src = box3i{glm::max(src.min, world_.min), glm::min(src.max, world_.max)};
+    box3i world = bounds();
+    src = box3i{glm::max(src.min, world.min), glm::min(src.max, world.max)};
     if (src.empty()) return;
+    if (replace || op == edit_op::fill)
+        make_room({glm::i64vec3(src.min) + glm::i64vec3(offset), glm::i64vec3(src.max) + glm::i64vec3(offset)});
     glm::ivec3 ext = src.extent();
     std::vector<Payload> values(src.volume());
     std::size_t k = 0;
@@ -174,14 +212,12 @@ void brickmap<Payload, E>::copy_region(box3i src, glm::ivec3 offset, edit_op op,
         for (int y = 0; y < ext.y; ++y)
             for (int x = 0; x < ext.x; ++x) {
                 glm::ivec3 p = src.min + glm::ivec3(x, y, z) + offset;
-                if (!world_.contains(p)) continue;
                 Payload s = values[(std::size_t(z) * ext.y + y) * ext.x + x];
                 edit_op o = replace ? (s ? edit_op::fill : edit_op::erase) : op;
                 if (!replace && s == 0) continue;
                 Payload v = o == edit_op::erase ? Payload(0) : s;
-                glm::uvec3 q(p - world_.min);
-                std::uint32_t i = local_index(q);
-                edit_with_growth(q >> unsigned(codec::bits), o, v, false, ctx,
+                std::uint32_t i = local_of(p);
+                edit_with_growth(p, o, v, false, ctx,
                                  [&](std::uint32_t* brick) { return codec::write_run(brick, i, 1, o, v); });
             }
     settle();
@@ -241,15 +277,20 @@ brickmap<Payload, E> brickmap<Payload, E>::build(const voxel_model& model, unsig
                                     }
                             return r;
                         };
-                        m.edit_with_growth(bc, edit_op::fill, 1, false, ctx, write, false);
+                        glm::ivec3 corner = m.world_.min + glm::ivec3(bc << bits);
+                        m.edit_with_growth(corner, edit_op::fill, 1, false, ctx, write, false);
                     }
         }
     });
     m.settle();
-    m.shrink_to_fit();
+    {
+        std::unique_lock lock(m.locks_.grow);
+        m.fit_locked(std::max(0.0, double(opt.build_headroom)));
+    }
     m.dirty_.clear();
     m.dirty_.mark_whole();
     for (auto& w : m.meta_) w &= ~dirty_bit;
+    m.palette_ = model.palette();
     m.build_seconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     return m;
 }

@@ -1,17 +1,19 @@
-// Brickmap files: a 48-byte header, then the blob words exactly as in memory, so a load
-// gives a bit-identical blob. Everything little endian.
+// Brickmap files: a 48-byte header, the blob words exactly as in memory (so a load gives
+// a bit-identical blob), then the palette. Everything little endian.
 //
 //   offset  size  field
 //        0     4  magic "VXBF" (0x46425856)
-//        4     4  file version (1)
+//        4     4  file version (2; version 1 files, without a palette, still load
+//                 with the default palette)
 //        8     4  payload bits (8, 16, 32)      must match the brickmap type
 //       12     4  brick edge (4, 8, 16)         must match the brickmap type
-//       16     8  blob words                    file size must be 48 + 4 * words
+//       16     8  blob words                    file size must be 48 + 4 * words (+ 7168)
 //       24     8  solid voxel count             checked against the content
 //       32     4  bricks used (pool high-water mark)
 //       36     4  pages used
-//       40     8  checksum: FNV-1a 64 over bytes 0..39, then over every blob word
+//       40     8  checksum: FNV-1a 64 over bytes 0..39, every blob word, the palette
 //       48        blob words
+//   48 + 4w 7168  palette: 256 records of 28 bytes (io/palette_record.hpp)
 //
 // A load trusts nothing: sizes are checked before anything is allocated, the checksum
 // before the content is parsed, and the content (layout offsets, page and brick
@@ -28,13 +30,14 @@
 #include <vector>
 
 #include "voxray/brickmap/brickmap.hpp"
+#include "voxray/io/palette_record.hpp"
 
 namespace voxray {
 
 static_assert(std::endian::native == std::endian::little, "brickmap files assume a little-endian host");
 
 inline constexpr std::uint32_t brickmap_file_magic = 0x46425856u;  // "VXBF"
-inline constexpr std::uint32_t brickmap_file_version = 1;
+inline constexpr std::uint32_t brickmap_file_version = 2;
 inline constexpr std::size_t brickmap_file_header_bytes = 48;
 
 struct fnv64 {
@@ -55,8 +58,14 @@ struct brickmap_io {
     using map = brickmap<Payload, E>;
     using codec = typename map::codec;
 
+    // Safe while other threads edit: the blob and its counts are copied under the
+    // exclusive lock (writers wait for a memcpy, not for the disk), then written.
     static void save(const map& m, const std::filesystem::path& path) {
-        std::shared_lock lock(m.locks_.grow);  // a consistent snapshot: no growth meanwhile
+        auto frame = m.snapshot();
+        blob_words words(frame.blob.begin(), frame.blob.end());
+        std::uint32_t bricks_used = m.pool_.used(), pages_used = m.page_used_;
+        std::vector<unsigned char> pal = io::encode_palette(m.palette_);
+        frame.lock.unlock();
         unsigned char h[brickmap_file_header_bytes] = {};
         auto put32 = [&](std::size_t at, std::uint32_t v) { std::memcpy(h + at, &v, 4); };
         auto put64 = [&](std::size_t at, std::uint64_t v) { std::memcpy(h + at, &v, 8); };
@@ -64,18 +73,20 @@ struct brickmap_io {
         put32(4, brickmap_file_version);
         put32(8, codec::payload_bits);
         put32(12, E);
-        put64(16, m.words_.size());
-        put64(24, m.voxel_count());
-        put32(32, m.pool_.used());
-        put32(36, m.page_used_);
+        put64(16, words.size());
+        put64(24, frame.voxels);
+        put32(32, bricks_used);
+        put32(36, pages_used);
         fnv64 sum;
         sum.bytes(h, 40);
-        sum.words(m.words_.data(), m.words_.size());
+        sum.words(words.data(), words.size());
+        sum.bytes(pal.data(), pal.size());
         put64(40, sum.h);
         std::ofstream out(path, std::ios::binary | std::ios::trunc);
         if (!out) fail("brickmap file ", path.string(), ": cannot open for writing");
         out.write(reinterpret_cast<const char*>(h), sizeof h);
-        out.write(reinterpret_cast<const char*>(m.words_.data()), std::streamsize(m.words_.size() * 4));
+        out.write(reinterpret_cast<const char*>(words.data()), std::streamsize(words.size() * 4));
+        out.write(reinterpret_cast<const char*>(pal.data()), std::streamsize(pal.size()));
         if (!out) fail("brickmap file ", path.string(), ": write failed");
     }
 
@@ -96,25 +107,46 @@ struct brickmap_io {
             fail("brickmap file ", name, ": offset ", offset, ": ", what, " ", value, more...);
         };
         if (get32(0) != brickmap_file_magic) bad(0, "bad magic", get32(0), " (expected ", brickmap_file_magic, ")");
-        if (get32(4) != brickmap_file_version)
-            bad(4, "unsupported version", get32(4), " (this build reads version ", brickmap_file_version, ")");
+        const std::uint32_t version = get32(4);
+        if (version != 1 && version != brickmap_file_version)
+            bad(4, "unsupported version", version, " (this build reads versions 1 and ", brickmap_file_version, ")");
+        const std::uint64_t palette_size = version >= 2 ? io::palette_bytes : 0;
         if (get32(8) != codec::payload_bits)
             bad(8, "payload bits", get32(8), " do not match this brickmap's ", codec::payload_bits);
         if (get32(12) != std::uint32_t(E)) bad(12, "brick edge", get32(12), " does not match this brickmap's ", E);
         std::uint64_t words = get64(16);
         if (words < VX_BM_HEADER_WORDS || words >= max_blob_words)
             bad(16, "blob size of", words, " words is outside [", VX_BM_HEADER_WORDS, ", ", max_blob_words, ")");
-        if (size != brickmap_file_header_bytes + 4 * words)
-            bad(16, "blob size of", words, " words needs a file of ", brickmap_file_header_bytes + 4 * words,
-                " bytes, but the file has ", size, " (truncated or trailing data)");
+        if (size != brickmap_file_header_bytes + 4 * words + palette_size)
+            bad(16, "blob size of", words, " words needs a file of ", brickmap_file_header_bytes + 4 * words + palette_size,
+                " bytes (version ", version, "), but the file has ", size, " (truncated or trailing data)");
         blob_words blob(words);
         if (!in.read(reinterpret_cast<char*>(blob.data()), std::streamsize(words * 4)))
             fail("brickmap file ", name, ": cannot read ", words * 4, " bytes of blob");
+        std::vector<unsigned char> pal(palette_size);
+        if (palette_size && !in.read(reinterpret_cast<char*>(pal.data()), std::streamsize(palette_size)))
+            fail("brickmap file ", name, ": cannot read the ", palette_size, "-byte palette");
         fnv64 sum;
         sum.bytes(h, 40);
         sum.words(blob.data(), blob.size());
+        sum.bytes(pal.data(), pal.size());
         if (sum.h != get64(40)) bad(40, "checksum", get64(40), " does not match the content's ", sum.h);
-        return restore(std::move(blob), get64(24), get32(32), get32(36), name);
+        map m = restore(std::move(blob), get64(24), get32(32), get32(36), name);
+        if (palette_size) m.palette_ = io::decode_palette(pal.data(), "brickmap file " + name, 48 + 4 * words);
+        return m;
+    }
+
+    // Calls bad(index) for the first solid voxel whose in-brick coordinate is not below
+    // `inside` on every axis.
+    template <class Bad>
+    static void check_outside_empty(const std::uint32_t* brick, glm::uvec3 inside, Bad&& bad) {
+        for (unsigned z = 0; z < unsigned(E); ++z)
+            for (unsigned y = 0; y < unsigned(E); ++y)
+                for (unsigned x = 0; x < unsigned(E); ++x) {
+                    if (x < inside.x && y < inside.y && z < inside.z) continue;
+                    std::uint32_t index = codec::index(x, y, z);
+                    if (codec::get(brick, index) != 0) bad(index);
+                }
     }
 
     // Checks a blob's layout and content and rebuilds the host-side state around it.
@@ -134,6 +166,8 @@ struct brickmap_io {
         expect(VX_BM_HEADER_PAYLOAD_BITS, codec::payload_bits, "payload bits");
         expect(VX_BM_HEADER_BRICK_WORDS, codec::words, "brick words");
         expect(VX_BM_HEADER_OCCUPANCY_WORDS, codec::occupancy_words, "occupancy words");
+        for (std::uint32_t r = VX_BM_HEADER_BRICK_CAPACITY + 1; r < VX_BM_HEADER_WORDS; ++r)
+            expect(r, 0, "reserved header word");
         box3i world;
         for (int a = 0; a < 3; ++a) {
             auto o = std::int32_t(blob[VX_BM_HEADER_ORIGIN + a]);
@@ -188,8 +222,13 @@ struct brickmap_io {
                 glm::uvec3 cell = pc * 16u + glm::uvec3(l & 15, (l >> 4) & 15, l >> 8);
                 if (cell.x >= m.cells_.x || cell.y >= m.cells_.y || cell.z >= m.cells_.z)
                     bad(co, "top cell outside the world holds", c, "");
+                // A cell on the world's far faces covers voxels outside the world: those
+                // must be empty (a solid cell there, or set bits, would count them).
+                glm::uvec3 inside = glm::min(glm::uvec3(E), glm::uvec3(world.extent()) - cell * unsigned(E));
+                bool edge_cell = inside != glm::uvec3(E);
                 if (!(c & VX_BM_CELL_IS_BRICK)) {
                     if (VX_BM_CELL_VALUE(c) > codec::value_mask) bad(co, "solid cell payload", VX_BM_CELL_VALUE(c), " is too wide");
+                    if (edge_cell) bad(co, "solid cell", c, " covers voxels outside the world");
                     count += map::full;
                     continue;
                 }
@@ -202,6 +241,11 @@ struct brickmap_io {
                 if (bad_word != codec::words)
                     bad(bricks_off + std::uint64_t(b) * codec::words + bad_word, "payload word", brick[bad_word],
                         " disagrees with the occupancy bits of brick ", b);
+                if (edge_cell) check_outside_empty(brick, inside, [&](std::uint32_t index) {
+                    bad(bricks_off + std::uint64_t(b) * codec::words, "brick", b, " has voxel ", index,
+                        " outside the world (extent ", world.extent().x, " x ", world.extent().y, " x ",
+                        world.extent().z, ")");
+                });
                 std::uint32_t n = codec::count(brick);
                 m.meta_[b] = n;
                 m.owner_[b] = co;

@@ -64,7 +64,7 @@ protected:
         bricks = std::max(bricks, std::min(brick_capacity_, bricks_in_use));
         std::uint64_t bricks_off = std::uint64_t(pages_off_) + std::uint64_t(pages) * VX_BM_PAGE_WORDS;
         std::uint64_t total = bricks_off + std::uint64_t(bricks) * brick_words_;
-        check_blob_size("brickmap", total);
+        check_words("brickmap", total);
         blob_words next(total, 0u);
         if (!words_.empty()) {
             std::uint64_t keep = std::uint64_t(pages_off_) + std::uint64_t(page_used_) * VX_BM_PAGE_WORDS;
@@ -78,6 +78,69 @@ protected:
         brick_capacity_ = bricks;
         bricks_off_ = std::uint32_t(bricks_off);
         write_header();
+    }
+
+    // Re-lays the blob out for a larger world `w` whose min corner lies whole pages below
+    // the old one (so every page keeps its cells and only its page-table slot moves):
+    //
+    //   old page table (2x1)      new page table (4x2), shift (1, 1)
+    //   +---+---+                 +---+---+---+---+
+    //   | A | B |        -->      |   | A | B |   |     row y = 1
+    //   +---+---+                 +---+---+---+---+
+    //                             |   |   |   |   |     row y = 0
+    //                             +---+---+---+---+
+    //
+    // The page pool and brick pool are copied unchanged after the larger table. Returns
+    // how far the page pool moved (in words). Strong guarantee: on failure nothing changed.
+    std::uint32_t regrid(box3i w) {
+        const std::int64_t span = std::int64_t(VX_BM_PAGE_EDGE) << brick_bits_;
+        glm::uvec3 shift, cells, dims;
+        std::uint32_t edge = 1u << brick_bits_;
+        glm::ivec3 e = w.extent();
+        for (int a = 0; a < 3; ++a) {
+            shift[a] = std::uint32_t((std::int64_t(world_.min[a]) - w.min[a]) / span);
+            cells[a] = std::uint32_t((std::uint64_t(e[a]) + edge - 1) / edge);
+            dims[a] = (cells[a] + VX_BM_PAGE_MASK) / VX_BM_PAGE_EDGE;
+        }
+        std::uint64_t table = std::uint64_t(dims.x) * dims.y * dims.z;
+        std::uint64_t pages_off = VX_BM_HEADER_WORDS + table;
+        std::uint64_t bricks_off = pages_off + std::uint64_t(page_capacity_) * VX_BM_PAGE_WORDS;
+        check_words("brickmap (grown world)", bricks_off + std::uint64_t(brick_capacity_) * brick_words_);
+        blob_words next(bricks_off + std::uint64_t(brick_capacity_) * brick_words_, 0u);
+        std::fill(next.begin() + VX_BM_HEADER_WORDS, next.begin() + std::ptrdiff_t(pages_off), VX_BM_EMPTY_PAGE);
+        for (std::uint64_t s = 0, n = page_table_words(); s < n; ++s) {
+            std::uint32_t page = words_[VX_BM_HEADER_WORDS + s];
+            if (page == VX_BM_EMPTY_PAGE) continue;
+            glm::uvec3 pc{std::uint32_t(s % pages_dim_.x), std::uint32_t(s / pages_dim_.x % pages_dim_.y),
+                          std::uint32_t(s / pages_dim_.x / pages_dim_.y)};
+            pc += shift;
+            next[VX_BM_HEADER_WORDS + pc.x + std::uint64_t(dims.x) * (pc.y + std::uint64_t(dims.y) * pc.z)] = page;
+        }
+        std::copy(words_.begin() + pages_off_, words_.begin() + pages_off_ + std::uint64_t(page_used_) * VX_BM_PAGE_WORDS,
+                  next.begin() + std::ptrdiff_t(pages_off));
+        std::copy(words_.begin() + bricks_off_, words_.end(), next.begin() + std::ptrdiff_t(bricks_off));
+        std::uint32_t moved = std::uint32_t(pages_off) - pages_off_;
+        words_.swap(next);
+        world_ = w;
+        cells_ = cells;
+        pages_dim_ = dims;
+        pages_off_ = std::uint32_t(pages_off);
+        bricks_off_ = std::uint32_t(bricks_off);
+        write_header();
+        return moved;
+    }
+
+    // The blob limit: 8 GiB (core/blob.hpp), or less when the owner asks (options).
+    void check_words(const char* what, std::uint64_t words) const {
+        check_blob_size(what, words);
+        if (words > limit_words_)
+            fail(what, " would need a blob of ", words * 4, " bytes, above this brickmap's limit of ", limit_words_ * 4,
+                 " bytes (options::max_blob_bytes)");
+    }
+    // How many bricks fit the limit with `pages` pages of capacity.
+    std::uint64_t bricks_fitting(std::uint64_t pages) const {
+        std::uint64_t fixed = std::uint64_t(pages_off_) + pages * VX_BM_PAGE_WORDS;
+        return fixed >= limit_words_ ? 0 : (limit_words_ - fixed) / brick_words_;
     }
 
     void write_header() {
@@ -108,6 +171,7 @@ protected:
     std::uint32_t brick_bits_ = 0, payload_bits_ = 0, brick_words_ = 0, occupancy_words_ = 0;
     std::uint32_t pages_off_ = 0, bricks_off_ = 0;
     std::uint32_t page_capacity_ = 0, page_used_ = 0, brick_capacity_ = 0;
+    std::uint64_t limit_words_ = max_blob_words - 1;
 };
 
 }  // namespace voxray

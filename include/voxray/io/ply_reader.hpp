@@ -270,6 +270,10 @@ inline triangle_mesh parse_ply(std::string_view bytes, const std::string& name) 
             if (e.name == "vertex" && (p.name == "x" || p.name == "y" || p.name == "z") &&
                 p.count_type != ply_type::none)
                 fail(at(), ": vertex coordinate ", p.name, " is a list");
+            // Each coordinate once: 'x y y' would otherwise leave z silently 0.
+            if (e.name == "vertex" && (p.name == "x" || p.name == "y" || p.name == "z"))
+                for (auto& q : e.props)
+                    if (q.name == p.name) fail(at(), ": vertex coordinate ", p.name, " is declared twice");
             if (e.props.size() >= 64) fail(at(), ": element '", e.name, "' has more than 64 properties");
             e.props.push_back(std::move(p));
         } else if (key == "end_header") {

@@ -20,9 +20,11 @@
 //
 // Robustness rules (each violation throws voxray::error with file, byte offset, chunk
 // id and the bad value):
-//   - MAIN's children size is clamped to the end of the file: real files (rock.vox)
-//     declare more than they hold. A consequence: a file cut exactly at a chunk boundary
-//     reads as a file with fewer chunks. A chunk cut anywhere else is an error.
+//   - Truncation: a chunk cut short is an error. A file cut exactly at a chunk boundary
+//     holds fewer bytes than MAIN declares: an error, except in PACK-era files (rock.vox
+//     declares 0x7fffff bytes, a placeholder): PACK counts exactly the models read, there
+//     is no scene graph, and the palette (RGBA, written after the models) is there.
+//     PACK's count must always match the models read.
 //   - SIZE must be 1..vox_max_model_size per axis; XYZI must fit its chunk; a voxel
 //     outside its model's SIZE is rejected (the file is corrupt, and guessing where the
 //     voxel belongs would hide that). Voxels with palette index 0 are skipped: 0 means
@@ -170,6 +172,9 @@ inline material parse_material(const vox_cursor& c, std::size_t at, const vox_di
     m.emission = emit * float(std::pow(10.0, double(flux)));
     m.transparency = dict_number(c, at, d, "_alpha", m.transparency);
     m.transparency = dict_number(c, at, d, "_trans", m.transparency);
+    // Out-of-range numbers (_rough=-5, _ior=1e38) are errors, not materials a shader
+    // would turn into NaN or black.
+    if (std::string why = material_range_error(m); !why.empty()) c.error_at(at, "MATL material ", why);
     return m;
 }
 
@@ -301,7 +306,8 @@ inline vox_file parse_vox_chunks(std::span<const std::uint8_t> bytes, std::strin
     auto main_children = header.i32("MAIN children size");
     if (main_children < 0) header.error_at(main_at, "MAIN children size ", main_children, " is negative");
     header.skip(main_content, "MAIN content");
-    // Clamp: rock.vox declares 0x7fffff bytes of children in a 360 KB file.
+    // Clamp: rock.vox declares 0x7fffff bytes of children in a 360 KB file (checked below).
+    const std::size_t available = header.left();
     std::size_t end = header.offset() + std::min<std::size_t>(std::size_t(main_children), header.left());
 
     std::optional<vox_model_data> pending;
@@ -345,6 +351,14 @@ inline vox_file parse_vox_chunks(std::span<const std::uint8_t> bytes, std::strin
         // Other chunks (rOBJ rCAM NOTE IMAP MATT ...) carry nothing we need.
     }
     if (pending) fail(name, ": byte ", pending->offset, " in chunk 'SIZE': model has no XYZI chunk after it");
+    bool pack_matches = f.pack_models >= 0 && std::size_t(f.pack_models) == f.models.size();
+    bool pack_era_complete = pack_matches && f.nodes.empty() && f.palette.has_value();
+    if (f.pack_models >= 0 && !pack_matches)
+        fail(name, ": PACK declares ", f.pack_models, " models but the file holds ", f.models.size(),
+             " (truncated or corrupt)");
+    if (std::size_t(main_children) > available && !pack_era_complete)
+        fail(name, ": byte ", main_at + 8, ": MAIN declares ", main_children,
+             " bytes of chunks but the file holds ", available, " after MAIN's header (truncated)");
     return f;
 }
 

@@ -2,7 +2,10 @@
 // colours with a material. Voxels store only the index.
 #pragma once
 #include <array>
+#include <cmath>
 #include <cstdint>
+#include <sstream>
+#include <string>
 
 namespace voxray {
 
@@ -15,15 +18,37 @@ struct material {
     float ior = 1.5f;
     float emission = 0.0f;  // radiance scale for emit materials
     float transparency = 0.0f;
+    bool operator==(const material&) const = default;
 };
+
+// What is wrong with a material's numbers ("" when nothing): each field within the range
+// a renderer can use (MagicaVoxel's sliders: roughness, metalness and transparency in
+// [0, 1], IOR in [1, 5]; emission finite and >= 0). Readers of files call it, so a bad
+// value is an error naming the field, never a silent NaN later in a shader.
+inline std::string material_range_error(const material& m) {
+    struct field { const char* name; float value, lo, hi; };
+    const field fields[] = {{"roughness", m.roughness, 0.0f, 1.0f},   {"metalness", m.metalness, 0.0f, 1.0f},
+                            {"ior", m.ior, 1.0f, 5.0f},                {"transparency", m.transparency, 0.0f, 1.0f},
+                            {"emission", m.emission, 0.0f, 3.4e38f}};
+    for (const field& f : fields)
+        if (!(f.value >= f.lo && f.value <= f.hi)) {  // also catches NaN
+            std::ostringstream out;
+            out << f.name << " " << f.value << " is outside [" << f.lo << ", " << f.hi << "]";
+            return out.str();
+        }
+    if (int(m.kind) > int(material_kind::cloud)) return "material kind " + std::to_string(int(m.kind)) + " is unknown";
+    return "";
+}
 
 struct rgba {
     std::uint8_t r = 0, g = 0, b = 0, a = 255;
+    bool operator==(const rgba&) const = default;
 };
 
 struct palette_entry {
     rgba colour;
     material mat;
+    bool operator==(const palette_entry&) const = default;
 };
 
 class palette {
@@ -39,6 +64,8 @@ public:
             if (entries_[i].colour.r || entries_[i].colour.g || entries_[i].colour.b) ++n;
         return n;
     }
+
+    bool operator==(const palette&) const = default;
 
 private:
     std::array<palette_entry, size> entries_{};
