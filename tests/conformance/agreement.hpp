@@ -96,6 +96,22 @@ TYPED_TEST_P(agreement_suite, far_origins_and_tiny_components_agree_with_the_ref
     EXPECT_GT(hits, rays.size() / 50) << "too few hits to mean much";
 }
 
+// Rays entering the world on another axis's cell plane, over empty space that reaches the
+// world's top: the walk may cross that plane a hair before it enters the world.
+TYPED_TEST_P(agreement_suite, rays_entering_on_a_cell_plane_agree_with_the_reference) {
+    // Under the top face, stripes 4 voxels wide along y: solid, empty, solid... so an empty
+    // cuboid's side lies on the very plane a ray enters on, with solid just past it.
+    voxel_model model = random_sparse(box3i{{0, 0, 0}, {96, 96, 20}}, 3000, 61);
+    for (int z = 80; z < 94; ++z)  // the world's top cuts blocks, chunks and pages: their cuboids stick out
+        for (int y = 0; y < 96; ++y)
+            for (int x = 0; x < 96; ++x)
+                if ((y & 4) == 0 && x % 7 != 3) model.set({x, y, z}, std::uint8_t(1 + (x + z) % 200));
+    auto rays = entry_on_plane_rays(box3i{{0, 0, 0}, {96, 96, 94}}, 2000, 67);
+    ASSERT_GT(rays.size(), 200u) << "too few rays with the rounding this test is about";
+    this->expect_agrees_with_reference("entering on a cell plane", model, rays);
+    std::printf("[%s] %zu rays enter on a plane they have already crossed\n", this->case_name().c_str(), rays.size());
+}
+
 // The same structure on cpu_scalar (one thread) gives the same hit records, t, voxel,
 // face, material, steps and status, on every model and ray set, in both modes.
 TYPED_TEST_P(agreement_suite, bit_identical_to_cpu_scalar) {
@@ -177,6 +193,7 @@ TYPED_TEST_P(agreement_suite, shared_scenes_agree_with_the_reference) {
 REGISTER_TYPED_TEST_SUITE_P(agreement_suite, random_models_agree_with_the_oracle, lattice_rays_agree_with_the_oracle,
                             grazing_rays_agree_with_the_oracle, extreme_directions_agree_with_the_reference,
                             far_origins_and_tiny_components_agree_with_the_reference,
+                            rays_entering_on_a_cell_plane_agree_with_the_reference,
                             bit_identical_to_cpu_scalar, odd_batch_sizes_are_bit_identical,
                             builtin_scenes_agree_with_the_reference, shared_scenes_agree_with_the_reference);
 

@@ -102,6 +102,32 @@ inline std::vector<ray> far_rays(box3i b, std::size_t count, std::uint64_t seed)
     return rays;
 }
 
+// Rays from above box b that enter its top face on a y plane (a multiple of 4: block,
+// chunk and page planes of every structure), heading to -y, kept where float rounding puts
+// the walk's start cell on the far side of that plane although the plane's crossing comes
+// first (the start cell is floor(o + d t) at the entry t; the crossing is (plane - o) / d).
+// Every walk must then step y at the entry t. NAADF once carried such a ray out of the world
+// instead (1 ray of 2 M on sibenik at 1024). The test computes both as the DDA's begin does,
+// unfused (volatile), in world coordinates with b.min = 0.
+inline std::vector<ray> entry_on_plane_rays(box3i b, std::size_t count, std::uint64_t seed) {
+    std::vector<ray> rays;
+    rng g(seed);
+    for (std::size_t tries = 0; rays.size() < count && tries < 400 * count; ++tries) {
+        float top = float(b.max.z), height = g.uniform(10.0f, 900.0f);
+        float x = g.uniform(float(b.min.x), float(b.max.x));
+        float y = float(b.min.y + 4 * (1 + g.below(std::max(1, b.extent().y / 4 - 1))));
+        glm::vec3 d(g.uniform(-1.0f, 1.0f), g.uniform(-1.0f, -0.05f), -1.0f);
+        ray r{glm::vec3(x, y, top) - d * height, 0.0f, d, INFINITY};
+        volatile float inv_z = 1.0f / r.direction.z, inv_y = 1.0f / r.direction.y;
+        volatile float entry = (top - r.origin.z) * inv_z;
+        volatile float moved = r.direction.y * entry;
+        volatile float py = r.origin.y + moved;
+        volatile float crossing = (y - r.origin.y) * inv_y;
+        if (std::floor(py) == y && crossing < entry) rays.push_back(r);
+    }
+    return rays;
+}
+
 inline constexpr float huge_and_tiny_components[] = {0.0f, -0.0f, 1e-30f, -1e-30f, 1.0f, -1.0f, 3e38f, -3e38f};
 // Denormals (|d| < 2^-126: 1/d overflows) must act as zero in every DDA.
 inline constexpr float denormal_components[] = {0.0f, -0.0f, 1e-40f, -1e-40f, -1e-38f, 1.0f, -1.0f};

@@ -264,7 +264,10 @@ VX_FN vx_dda vx_dda_leave_box(vx_dda d, vx_f32 dx, vx_f32 dy, vx_f32 dz, vx_i32 
     vx_f32 ez = vx_dda_exit_t_sized(loz, hiz - loz, d.sz, d.oz, d.iz);
     vx_f32 texit = vx_fmin(ex, vx_fmin(ey, ez));
     vx_mask mx = m && ex == texit, my = m && ey == texit, mz = m && ez == texit;
-    vx_f32 t = vx_sel(m, texit, 0.0f);
+    /* Where the walk is once out: at texit, or still at d.t where the box's exit plane was
+     * crossed before the walk's current t (a ray that entered the world on that plane:
+     * the reference then steps that axis at d.t too, as vx_dda_move_sized does). */
+    vx_f32 t = vx_sel(m, vx_fmax(d.t, texit), 0.0f);
     vx_i32 fx = d.cx, fy = d.cy, fz = d.cz;
     /* A component that counts as zero (vx_moves) moves nothing, even over a huge t. */
     d.cx = vx_sel(m, vx_dda_leave_axis(mx, lox, hix, d.sx, d.ox, vx_sel(d.sx != 0, dx, 0.0f), d.ix, t), d.cx);
