@@ -13,8 +13,7 @@
 // run_stack_program(seed, rounds): the number of entries checked; fails the test on the
 // first entry that differs. Defined once per lane namespace, in that namespace's ISA.
 #define VOXRAY_STACK_PROGRAM                                                                              \
-    template <int W = width>                                                                              \
-    std::size_t run_stack_program(std::uint64_t seed, int rounds) {                                       \
+    inline std::size_t run_stack_program(std::uint64_t seed, int rounds) {                                \
         voxray::rng g(seed);                                                                              \
         vx_stack s;                                                                                       \
         std::memset(&s, 0, sizeof s);                                                                     \
@@ -25,7 +24,7 @@
             std::uint32_t values[width];                                                                  \
             for (int k = 0; k < width; ++k) {                                                             \
                 auto& stack = expected[k];                                                                \
-                int op = g.below(4); /* push, push, pop, overwrite the top */                            \
+                int op = g.below(4); /* push, push, pop, overwrite the top */                             \
                 values[k] = std::uint32_t(g.next());                                                      \
                 levels[k] = 0, stores[k] = 0;                                                             \
                 if (op < 2 && stack.size() < VX_STACK_DEPTH)                                              \
@@ -37,11 +36,11 @@
             }                                                                                             \
             vx_i32 level;                                                                                 \
             vx_u32 value;                                                                                 \
-            vx_mask m;                                                                                    \
             std::memcpy(&level, levels, sizeof level);                                                    \
             std::memcpy(&value, values, sizeof value);                                                    \
-            if constexpr (W == 1) m = stores[0] != 0;                                                      \
-            else std::memcpy(&m, stores, sizeof m);                                                       \
+            vx_i32 flags;                                                                                 \
+            std::memcpy(&flags, stores, sizeof flags);                                                    \
+            vx_mask m = flags != 0;                                                                       \
             vx_stack_store(s, level, value, m);                                                           \
             for (int d = 0; d < VX_STACK_DEPTH; ++d) {                                                    \
                 vx_u32 got = vx_stack_load(s, vx_i32_splat(d));                                           \
@@ -49,7 +48,7 @@
                 std::memcpy(lanes, &got, sizeof lanes);                                                   \
                 for (int k = 0; k < width; ++k) {                                                         \
                     if (std::size_t(d) >= expected[k].size()) continue;                                   \
-                    EXPECT_EQ(lanes[k], expected[k][d]) << "lane " << k << " depth " << d << " round " << round; \
+                    EXPECT_EQ(lanes[k], expected[k][d]) << "lane " << k << " depth " << d << " round " << round;\
                     if (lanes[k] != expected[k][d]) return checked;                                       \
                     ++checked;                                                                            \
                 }                                                                                         \
@@ -91,3 +90,4 @@ TEST(lane_stack, sixteen_lanes_keep_every_level_of_every_lane) {
 }
 
 }  // namespace
+
