@@ -154,6 +154,15 @@ def table(header, rows, errors):
     return "\n".join(lines) + "\n"
 
 
+def replace_section(path, begin, end, text):
+    """Replaces what lies between the marker lines `begin` and `end` of file `path` with `text`."""
+    content = path.read_text()
+    if begin not in content or end not in content:
+        sys.exit(f"{path}: no {begin} ... {end} markers")
+    head, rest = content.split(begin, 1)
+    path.write_text(head + begin + "\n" + text + end + rest.split(end, 1)[1])
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("results")
@@ -172,12 +181,7 @@ def main():
     text = table(header, ok, [r for r in rows if "error" in r])
     (out / "table.md").write_text(text)
     if args.readme:
-        readme = pathlib.Path(args.readme)
-        content = readme.read_text()
-        if BEGIN not in content or END not in content:
-            sys.exit(f"{readme}: no {BEGIN} ... {END} markers")
-        head, rest = content.split(BEGIN, 1)
-        readme.write_text(head + BEGIN + "\n" + text + END + rest.split(END, 1)[1])
+        replace_section(pathlib.Path(args.readme), BEGIN, END, text)
     print(f"wrote {out}/mrays.png, speed_vs_memory.png, steps.png, table.md" + (f", {args.readme}" if args.readme else ""))
 
 

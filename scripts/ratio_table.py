@@ -13,7 +13,7 @@ import pathlib
 import sys
 
 sys.path.insert(0, str(pathlib.Path(__file__).resolve().parent))
-from plot_bench import load, measured, ordered  # noqa: E402
+from plot_bench import load, measured, ordered, replace_section  # noqa: E402
 
 EMBREE = ("embree-quads", "embree-boxes")
 
@@ -70,12 +70,7 @@ def main():
     print(text)
     if args.readme:
         begin, end = f"<!-- ratio-table:{args.structure}:begin -->", f"<!-- ratio-table:{args.structure}:end -->"
-        readme = pathlib.Path(args.readme)
-        content = readme.read_text()
-        if begin not in content or end not in content:
-            sys.exit(f"{readme}: no {begin} ... {end} markers")
-        head, rest = content.split(begin, 1)
-        readme.write_text(head + begin + "\n" + text + end + rest.split(end, 1)[1])
+        replace_section(pathlib.Path(args.readme), begin, end, text)
 
 
 if __name__ == "__main__":
