@@ -238,10 +238,14 @@ VX_FN vx_dda vx_dda_reenter(vx_dda d, vx_f32 dx, vx_f32 dy, vx_f32 dz, vx_i32 si
 /* One axis of vx_dda_leave_box: the cell past the box on an exit axis, else the cell the
  * walk is in at t (clamped into the box, which the ray is inside of on that axis). */
 VX_FN vx_i32 vx_dda_leave_axis(vx_mask exits, vx_i32 lo, vx_i32 hi, vx_i32 step, vx_f32 o, vx_f32 dir, vx_f32 inv,
-                               vx_f32 t) {
+                               vx_f32 t, vx_i32 current) {
     vx_i32 estimate = vx_f2i(vx_floor(vx_fmin(vx_fmax(o + dir * t, vx_i2f(lo)), vx_i2f(hi - 1))));
     vx_i32 c = vx_dda_cell_at(estimate, vx_i32_splat(0), vx_i32_splat(1), step, o, inv, t);
     c = vx_sel(c < lo, lo, vx_sel(c >= hi, hi - 1, c));
+    /* Never back against the step (a walk only moves forward, as the reference's does):
+     * with every axis monotone and the exit axes strictly past the box, the walk ends even
+     * where rounding at huge t puts the cell at t behind the walk. */
+    c = vx_sel(step > 0 && c < current, current, vx_sel(step < 0 && c > current, current, c));
     return vx_sel(exits, vx_sel(step > 0, hi, lo - 1), c);
 }
 
@@ -270,9 +274,9 @@ VX_FN vx_dda vx_dda_leave_box(vx_dda d, vx_f32 dx, vx_f32 dy, vx_f32 dz, vx_i32 
     vx_f32 t = vx_sel(m, vx_fmax(d.t, texit), 0.0f);
     vx_i32 fx = d.cx, fy = d.cy, fz = d.cz;
     /* A component that counts as zero (vx_moves) moves nothing, even over a huge t. */
-    d.cx = vx_sel(m, vx_dda_leave_axis(mx, lox, hix, d.sx, d.ox, vx_sel(d.sx != 0, dx, 0.0f), d.ix, t), d.cx);
-    d.cy = vx_sel(m, vx_dda_leave_axis(my, loy, hiy, d.sy, d.oy, vx_sel(d.sy != 0, dy, 0.0f), d.iy, t), d.cy);
-    d.cz = vx_sel(m, vx_dda_leave_axis(mz, loz, hiz, d.sz, d.oz, vx_sel(d.sz != 0, dz, 0.0f), d.iz, t), d.cz);
+    d.cx = vx_sel(m, vx_dda_leave_axis(mx, lox, hix, d.sx, d.ox, vx_sel(d.sx != 0, dx, 0.0f), d.ix, t, d.cx), d.cx);
+    d.cy = vx_sel(m, vx_dda_leave_axis(my, loy, hiy, d.sy, d.oy, vx_sel(d.sy != 0, dy, 0.0f), d.iy, t, d.cy), d.cy);
+    d.cz = vx_sel(m, vx_dda_leave_axis(mz, loz, hiz, d.sz, d.oz, vx_sel(d.sz != 0, dz, 0.0f), d.iz, t, d.cz), d.cz);
     /* Interior planes crossed at the exit t step too, and may name the face. */
     mx = m && (mx || vx_dda_stepped_at(d.cx, fx, d.sx, d.ox, d.ix, t));
     my = m && (my || vx_dda_stepped_at(d.cy, fy, d.sy, d.oy, d.iy, t));
