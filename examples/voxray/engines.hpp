@@ -131,6 +131,8 @@ public:
                 for (auto& e : edits)
                     std::visit([&](const auto& r) { structure->apply(r, e.op, payload(e.value), threads); }, e.region);
             }
+            // Distance fields the edits reset grow back now (NAADF): part of an edit's cost.
+            if constexpr (requires { structure->refine(); }) structure->refine();
             auto taken = structure->take_dirty_ranges();
             ranges.assign(taken.begin(), taken.end());
         } else {

@@ -6,6 +6,7 @@
 
 #include <vector>
 
+#include "naadf_cells.hpp"
 #include "random_models.hpp"
 #include "voxray/cpu.hpp"
 #include "voxray/naadf/naadf.hpp"
@@ -13,55 +14,6 @@
 
 namespace voxray::test {
 namespace {
-
-// The cell holding world voxel p, decoded from the blob with the layout's arithmetic.
-struct decoded_cell {
-    std::uint32_t value;
-    int level;  // log2 of the edge: 8, 4, 2, 0
-    bool solid;
-};
-
-decoded_cell cell_at(std::span<const std::uint32_t> w, glm::ivec3 p) {
-    glm::ivec3 origin, shift, pages;
-    for (int a = 0; a < 3; ++a) {
-        origin[a] = int(w[VX_NA_HEADER_ORIGIN + a]);
-        shift[a] = int(w[VX_NA_HEADER_SHIFT + a]);
-        pages[a] = int(w[VX_NA_HEADER_PAGES_DIM + a]);
-    }
-    auto g = glm::uvec3(p - origin + shift);
-    std::uint32_t cell = w[w[VX_NA_HEADER_PAGE_TABLE] + VX_NA_PAGE_SLOT(g.x, g.y, g.z, std::uint32_t(pages.x),
-                                                                        std::uint32_t(pages.x * pages.y))];
-    if (VX_NA_STATE(cell) != VX_NA_MIXED) return {cell, 8, VX_NA_STATE(cell) == VX_NA_UNIFORM};
-    cell = w[w[VX_NA_HEADER_CHUNKS] + VX_NA_PAYLOAD(cell) * VX_NA_CHUNK_ARRAY_WORDS + VX_NA_CHUNK_INDEX(g.x, g.y, g.z)];
-    if (VX_NA_STATE(cell) != VX_NA_MIXED) return {cell, 4, VX_NA_STATE(cell) == VX_NA_UNIFORM};
-    cell = w[w[VX_NA_HEADER_BLOCKS] + VX_NA_PAYLOAD(cell) * VX_NA_BLOCK_ARRAY_WORDS + VX_NA_BLOCK_INDEX(g.x, g.y, g.z)];
-    if (VX_NA_STATE(cell) != VX_NA_MIXED) return {cell, 2, VX_NA_STATE(cell) == VX_NA_UNIFORM};
-    std::uint32_t i = VX_NA_VOXEL_INDEX(g.x, g.y, g.z);
-    std::uint32_t v = (w[w[VX_NA_HEADER_VOXELS] + VX_NA_PAYLOAD(cell) * VX_NA_GROUP_WORDS + VX_NA_VOXEL_WORD(i)] >>
-                       VX_NA_VOXEL_SHIFT(i)) & 0xFFFFu;
-    return {v, 0, (v & VX_NA_VOXEL_SOLID) != 0};
-}
-
-// The empty cuboid an empty cell's AADF describes, in world voxels.
-box3i cuboid_of(std::span<const std::uint32_t> w, glm::ivec3 p, const decoded_cell& c) {
-    glm::ivec3 origin, shift;
-    for (int a = 0; a < 3; ++a) origin[a] = int(w[VX_NA_HEADER_ORIGIN + a]), shift[a] = int(w[VX_NA_HEADER_SHIFT + a]);
-    unsigned k = c.level >= VX_NA_CHUNK_BITS ? 5 : 2;
-    int size = 1 << c.level;
-    glm::ivec3 g = p - origin + shift, cell_min = (g / size) * size - shift + origin;  // g >= 0 here
-    box3i b;
-    for (int a = 0; a < 3; ++a) {
-        b.min[a] = cell_min[a] - int(VX_NA_AADF_FIELD(c.value, 2 * a + 1, k)) * size;
-        b.max[a] = cell_min[a] + size + int(VX_NA_AADF_FIELD(c.value, 2 * a, k)) * size;
-    }
-    return b;
-}
-
-std::vector<glm::ivec3> solid_voxels(const voxel_model& m) {
-    std::vector<glm::ivec3> out;
-    m.for_each_voxel([&](glm::ivec3 p, std::uint8_t) { out.push_back(p); });
-    return out;
-}
 
 TEST(naadf_layout, cells_and_indices_round_trip) {
     EXPECT_EQ(VX_NA_STATE(0u), VX_NA_EMPTY);  // all-zero memory is empty space with AADF 0

@@ -30,6 +30,7 @@
 #include <vector>
 
 #include "voxray/brickmap/brickmap.hpp"
+#include "voxray/core/checksum.hpp"
 #include "voxray/io/palette_record.hpp"
 
 namespace voxray {
@@ -39,19 +40,6 @@ static_assert(std::endian::native == std::endian::little, "brickmap files assume
 inline constexpr std::uint32_t brickmap_file_magic = 0x46425856u;  // "VXBF"
 inline constexpr std::uint32_t brickmap_file_version = 2;
 inline constexpr std::size_t brickmap_file_header_bytes = 48;
-
-struct fnv64 {
-    std::uint64_t h = 0xcbf29ce484222325ull;
-    void bytes(const void* p, std::size_t n) {
-        auto* c = static_cast<const unsigned char*>(p);
-        for (std::size_t i = 0; i < n; ++i) h = (h ^ c[i]) * 0x100000001b3ull;
-    }
-    // Word-at-a-time variant for the blob (4x fewer multiplies; every word still
-    // changes the state bijectively, so any single corrupted word changes the sum).
-    void words(const std::uint32_t* w, std::size_t n) {
-        for (std::size_t i = 0; i < n; ++i) h = (h ^ w[i]) * 0x100000001b3ull;
-    }
-};
 
 template <class Payload, int E>
 struct brickmap_io {

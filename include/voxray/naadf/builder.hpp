@@ -14,6 +14,7 @@
 #include "voxray/core/blob.hpp"
 #include "voxray/core/box.hpp"
 #include "voxray/core/error.hpp"
+#include "voxray/edit/world_growth.hpp"
 #include "voxray/model/voxel_model.hpp"
 #include "voxray/naadf/chunk_cells.hpp"
 #include "voxray/naadf/layout.h"
@@ -25,7 +26,14 @@ struct naadf_options {
     // false: every AADF stays 0. Still exact (a cell then skips only itself), just slower:
     // what a world looks like before its distance fields are grown.
     bool distance_fields = true;
+    // true: voxel and block fields are built, chunk and page fields are left at 0 for
+    // naadf::refine(budget) to grow later (a faster build, traceable at once).
+    bool defer_chunk_fields = false;
     unsigned threads = 0;  // build threads; 0 = every hardware thread
+    // Spare capacity of each blob area after the build, as a fraction of what it used, so
+    // that the first edits do not re-lay the blob out (which resends it whole).
+    double headroom = 0.25;
+    outside_edits outside = outside_edits::grow;  // fills outside bounds(): edit/world_growth.hpp
 };
 
 // What a build made, for reports and tests.
@@ -57,11 +65,23 @@ struct grid_placement {
         if (b.empty()) return;
         origin = glm::ivec3(floor_div(b.min.x, edge), floor_div(b.min.y, edge), floor_div(b.min.z, edge)) * edge;
         shift = b.min - origin;
-        pages = (shift + b.extent() + edge - 1) / edge;
-        page_count = std::uint64_t(pages.x) * pages.y * pages.z;
+        // In 64 bits: an extent near 2^31 would overflow int here.
+        glm::i64vec3 n = (glm::i64vec3(shift) + glm::i64vec3(b.extent()) + std::int64_t(edge - 1)) / std::int64_t(edge);
+        pages = glm::ivec3(n);
+        page_count = std::uint64_t(n.x) * std::uint64_t(n.y) * std::uint64_t(n.z);
         if (page_count > max_page_table_entries)
             fail("naadf: a world of ", b.extent().x, " x ", b.extent().y, " x ", b.extent().z, " voxels needs ",
                  page_count, " page table entries, above the limit of ", max_page_table_entries);
+    }
+    // The header words that place the grid (origin, extent, shift, page table size).
+    void write_header(std::uint32_t* w) const {
+        glm::ivec3 extent = bounds.extent();
+        for (int a = 0; a < 3; ++a) {
+            w[VX_NA_HEADER_ORIGIN + a] = std::uint32_t(bounds.min[a]);
+            w[VX_NA_HEADER_EXTENT + a] = std::uint32_t(extent[a]);
+            w[VX_NA_HEADER_SHIFT + a] = std::uint32_t(shift[a]);
+            w[VX_NA_HEADER_PAGES_DIM + a] = std::uint32_t(pages[a]);
+        }
     }
     // The sort key of the chunk at world position `chunk_origin`: page slot << 12 | index.
     std::uint64_t key(glm::ivec3 chunk_origin) const {
@@ -126,6 +146,7 @@ struct naadf_build {
     blob_words words;
     box3i bounds;
     naadf_stats stats;
+    group_table groups;  // the groups' types, for edits
 };
 
 inline naadf_build build(const voxel_model& model, const naadf_options& options) {
@@ -135,7 +156,8 @@ inline naadf_build build(const voxel_model& model, const naadf_options& options)
     out.stats.pages = grid.page_count;
     chunk_level chunks;
     build_chunks(model, grid, options, chunks, out.stats);
-    page_level pages = build_pages(chunks.keys, chunks.cells, grid.pages, options.distance_fields, options.threads);
+    bool chunk_fields = options.distance_fields && !options.defer_chunk_fields;
+    page_level pages = build_pages(chunks.keys, chunks.cells, grid.pages, chunk_fields, options.threads);
     out.stats.mixed_pages = pages.chunks.size() / VX_NA_CHUNK_ARRAY_WORDS;
 
     // The blob: header, page table, chunk arrays, block arrays, groups.
@@ -147,15 +169,9 @@ inline naadf_build build(const voxel_model& model, const naadf_options& options)
     check_blob_size("naadf", total);
     blob_words& w = out.words;
     w.resize(total);
-    glm::ivec3 extent = grid.bounds.extent();
     w[VX_NA_HEADER_MAGIC] = VX_NA_MAGIC;
     w[VX_NA_HEADER_VERSION] = VX_NA_VERSION;
-    for (int a = 0; a < 3; ++a) {
-        w[VX_NA_HEADER_ORIGIN + a] = std::uint32_t(grid.bounds.min[a]);
-        w[VX_NA_HEADER_EXTENT + a] = std::uint32_t(extent[a]);
-        w[VX_NA_HEADER_SHIFT + a] = std::uint32_t(grid.shift[a]);
-        w[VX_NA_HEADER_PAGES_DIM + a] = std::uint32_t(grid.pages[a]);
-    }
+    grid.write_header(w.data());
     w[VX_NA_HEADER_PAGE_TABLE] = std::uint32_t(table);
     w[VX_NA_HEADER_CHUNKS] = std::uint32_t(chunk_area);
     w[VX_NA_HEADER_BLOCKS] = std::uint32_t(block_area);
@@ -168,6 +184,7 @@ inline naadf_build build(const voxel_model& model, const naadf_options& options)
     std::copy(chunks.blocks.begin(), chunks.blocks.end(), w.begin() + block_area);
     chunks.groups.copy_to(w.data() + voxel_area);
     if (options.distance_fields) add_group_fields(w.data() + voxel_area, chunks.groups.size(), options.threads);
+    out.groups = std::move(chunks.groups);
     return out;
 }
 

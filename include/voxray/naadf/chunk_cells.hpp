@@ -4,6 +4,7 @@
 // empty voxels' fields are written once per distinct group, after deduplication
 // (add_group_fields), since they follow from the types.
 #pragma once
+#include <algorithm>
 #include <array>
 #include <cstdint>
 #include <cstring>
@@ -82,19 +83,49 @@ inline void build_chunk(const voxel_model::chunk& c, bool fields, built_chunk& o
     out.cell = VX_NA_MIXED_CELL(0);
 }
 
+// Adds the distance fields of a group's empty voxels to its types (32 words in place).
+inline void add_fields(std::uint32_t* g) {
+    std::uint64_t solid = 0;
+    for (int i = 0; i < 64; ++i)
+        solid |= std::uint64_t((g[VX_NA_VOXEL_WORD(i)] >> VX_NA_VOXEL_SHIFT(i)) & VX_NA_VOXEL_SOLID ? 1 : 0) << i;
+    auto aadfs = grid4_aadfs(solid, VX_NA_VOXEL_AADF_BITS);
+    for (int i = 0; i < 64; ++i) g[VX_NA_VOXEL_WORD(i)] |= aadfs[i] << VX_NA_VOXEL_SHIFT(i);
+}
+
 // Writes the distance fields of the empty voxels of `count` groups (type-only until now).
 inline void add_group_fields(std::uint32_t* words, std::size_t count, unsigned requested_threads) {
     unsigned threads = resolve_build_threads(requested_threads, count / 256);
     run_build_threads(threads, [&](unsigned id) {
-        for (std::size_t n = id; n < count; n += threads) {
-            std::uint32_t* g = words + n * VX_NA_GROUP_WORDS;
-            std::uint64_t solid = 0;
-            for (int i = 0; i < 64; ++i)
-                solid |= std::uint64_t((g[VX_NA_VOXEL_WORD(i)] >> VX_NA_VOXEL_SHIFT(i)) & VX_NA_VOXEL_SOLID ? 1 : 0) << i;
-            auto aadfs = grid4_aadfs(solid, VX_NA_VOXEL_AADF_BITS);
-            for (int i = 0; i < 64; ++i) g[VX_NA_VOXEL_WORD(i)] |= aadfs[i] << VX_NA_VOXEL_SHIFT(i);
-        }
+        for (std::size_t n = id; n < count; n += threads) add_fields(words + n * VX_NA_GROUP_WORDS);
     });
+}
+
+// The types of a chunk's voxels (the inverse of build_chunk): `cell` is the chunk's cell,
+// `blocks` and `groups` the blob's areas (word pointers at array / group 0).
+inline void decode_chunk(std::uint32_t cell, const std::uint32_t* blocks, const std::uint32_t* groups, voxel_model::chunk& out) {
+    auto& v = out.voxels;
+    if (VX_NA_STATE(cell) != VX_NA_MIXED) {
+        std::uint8_t t = VX_NA_STATE(cell) == VX_NA_UNIFORM ? std::uint8_t(cell & VX_NA_TYPE_MASK) : 0;
+        std::fill(v.begin(), v.end(), t);
+        return;
+    }
+    const auto& offsets = block_offsets();
+    const std::uint32_t* array = blocks + std::uint64_t(VX_NA_PAYLOAD(cell)) * VX_NA_BLOCK_ARRAY_WORDS;
+    for (int b = 0; b < 64; ++b) {
+        std::uint8_t* base = v.data() + voxel_model::local_index(glm::ivec3(b & 3, (b >> 2) & 3, b >> 4) * 4);
+        std::uint32_t block = array[b];
+        if (VX_NA_STATE(block) != VX_NA_MIXED) {
+            std::uint8_t t = VX_NA_STATE(block) == VX_NA_UNIFORM ? std::uint8_t(block & VX_NA_TYPE_MASK) : 0;
+            for (int row = 0; row < 16; ++row)
+                std::memset(base + (row & 3) * voxel_model::chunk_edge + (row >> 2) * voxel_model::chunk_edge * voxel_model::chunk_edge, t, 4);
+            continue;
+        }
+        const std::uint32_t* g = groups + std::uint64_t(VX_NA_PAYLOAD(block)) * VX_NA_GROUP_WORDS;
+        for (int i = 0; i < 64; ++i) {
+            std::uint32_t voxel = g[VX_NA_VOXEL_WORD(i)] >> VX_NA_VOXEL_SHIFT(i);
+            base[offsets[i]] = voxel & VX_NA_VOXEL_SOLID ? std::uint8_t(voxel & VX_NA_TYPE_MASK) : 0;
+        }
+    }
 }
 
 }  // namespace voxray::naadf_detail

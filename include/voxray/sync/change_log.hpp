@@ -1,4 +1,4 @@
-// Which blob words changed in which generation, so that every consumer of one brickmap
+// Which blob words changed in which generation, so that every consumer of one structure
 // (a tracer per backend, a tool's own copy) asks "what changed since generation g" and
 // gets just that, however many consumers there are and whenever they were made.
 //
@@ -9,7 +9,7 @@
 // The log keeps ranges covering at most the blob's size (past that, sending the whole
 // blob is as cheap) in at most blob words / 16 entries (16 bytes each: a quarter of the
 // blob's memory); dropping the oldest entries makes older consumers get the whole blob,
-// never too little. Plain data: the brickmap commits and reads it under its
+// never too little. Plain data: the structure commits and reads it under its
 // exclusive lock.
 #pragma once
 #include <algorithm>
@@ -17,7 +17,7 @@
 #include <deque>
 #include <vector>
 
-#include "voxray/brickmap/dirty_set.hpp"
+#include "voxray/sync/dirty_set.hpp"
 #include "voxray/core/word_range.hpp"
 #include "voxray/sync/dirty_ranges.hpp"
 

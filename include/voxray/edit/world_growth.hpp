@@ -1,8 +1,9 @@
-// What a brickmap does with a fill that reaches outside its world box, and how far the
-// world grows. Erasing or painting outside needs nothing: there is nothing there.
+// What an editable structure (brickmap, NAADF) does with a fill that reaches outside its
+// world box, and how far the world grows. Erasing or painting outside needs nothing: there is nothing there.
 //
 //   grow  (default) the world box grows to hold the edit: its min corner moves down by
-//         whole pages (16 bricks), so existing pages keep their cells (top_grid::regrid),
+//         whole pages (a brickmap's 16 bricks, NAADF's 256 voxels), so existing pages
+//         keep their cells,
 //         and each grown side gets headroom of half the old extent, so a brush dragged
 //         outwards re-lays the blob out O(log) times, not once per stroke;
 //   fail  the edit throws voxray::error naming the region and the world, nothing changes;
@@ -28,7 +29,7 @@ inline std::int64_t round_up(std::int64_t v, std::int64_t m) { return (v + m - 1
 
 // The grown world box holding `world` and `need`, its min corner moved by multiples of
 // `span` voxels (a page). Throws when that cannot fit 32-bit voxel coordinates.
-inline box3i grown(const box3i& world, const regions::box64& need, std::int64_t span) {
+inline box3i grown(const box3i& world, const regions::box64& need, std::int64_t span, const char* who = "brickmap") {
     constexpr std::int64_t lo_limit = std::numeric_limits<int>::min(), hi_limit = std::numeric_limits<int>::max();
     box3i out = world;
     for (int a = 0; a < 3; ++a) {
@@ -40,7 +41,7 @@ inline box3i grown(const box3i& world, const regions::box64& need, std::int64_t 
             return lo - d >= lo_limit && hi + u <= hi_limit && (hi + u) - (lo - d) <= hi_limit;
         };
         if (!fits(down, up))
-            fail("brickmap: a fill over voxels [", need.min[a], ", ", need.max[a], ") on axis ", "xyz"[a],
+            fail(who, ": a fill over voxels [", need.min[a], ", ", need.max[a], ") on axis ", "xyz"[a],
                  " cannot grow the world [", lo, ", ", hi, "): the grown world would not fit 32-bit voxel "
                  "coordinates (min >= ", lo_limit, ", max and extent <= ", hi_limit, ")");
         std::int64_t room = ext / 2;
@@ -54,11 +55,11 @@ inline box3i grown(const box3i& world, const regions::box64& need, std::int64_t 
     return out;
 }
 
-[[noreturn]] inline void refuse(const box3i& world, const regions::box64& need) {
-    fail("brickmap: a fill over voxels [(", need.min.x, ", ", need.min.y, ", ", need.min.z, "), (", need.max.x, ", ",
+[[noreturn]] inline void refuse(const box3i& world, const regions::box64& need, const char* who = "brickmap") {
+    fail(who, ": a fill over voxels [(", need.min.x, ", ", need.min.y, ", ", need.min.z, "), (", need.max.x, ", ",
          need.max.y, ", ", need.max.z, ")) reaches outside the world [(", world.min.x, ", ", world.min.y, ", ",
          world.min.z, "), (", world.max.x, ", ", world.max.y, ", ", world.max.z,
-         ")) and this brickmap was made with outside_edits::fail");
+         ")) and this ", who, " was made with outside_edits::fail");
 }
 
 }  // namespace world_growth

@@ -1,0 +1,497 @@
+// NAADF's construction, edits and field upkeep (declared in naadf/naadf.hpp).
+//
+// Every edit works chunk by chunk, in batches of chunks:
+//   1. in parallel, each chunk is decoded to 16^3 types, edited, and rebuilt with
+//      build_chunk (blocks, block fields, groups with their voxel fields);
+//   2. in order, each rebuilt chunk is committed: its groups interned (new ones written
+//      to the blob), its block array rewritten in place (or taken from the free list),
+//      and the old groups released, so unreachable storage is reused;
+//   3. each touched page is settled: chunk fields the edit broke are reset to 0, a page
+//      that turned empty or uniform collapses, and the page table's fields are checked
+//      when a page turned non-empty. refine() grows the reset fields back later.
+// The blob is exact after every step a ray can see (all happen under the lock).
+#pragma once
+#include <algorithm>
+#include <atomic>
+#include <bit>
+#include <chrono>
+#include <cstring>
+#include <variant>
+#include <vector>
+
+#include "voxray/edit/world_growth.hpp"
+#include "voxray/model/build_threads.hpp"
+#include "voxray/naadf/chunk_cells.hpp"
+#include "voxray/naadf/field_upkeep.hpp"
+#include "voxray/naadf/naadf.hpp"
+
+namespace voxray {
+
+namespace naadf_detail {
+
+inline constexpr int chunk_edge = 1 << VX_NA_CHUNK_BITS;
+
+// Solid voxels of a chunk: the high bit of each byte of (b & 0x7F) + 0x7F | b is set
+// iff b != 0, so a 64-bit word counts 8 voxels at once.
+inline std::int64_t solid_voxels(const voxel_model::chunk& c) {
+    constexpr std::uint64_t low7 = 0x7F7F7F7F7F7F7F7Full;
+    std::int64_t n = 0;
+    for (std::size_t i = 0; i < c.voxels.size(); i += 8) {
+        std::uint64_t w;
+        std::memcpy(&w, c.voxels.data() + i, 8);
+        n += std::popcount((((w & low7) + low7) | w) & ~low7);
+    }
+    return n;
+}
+
+inline box3i intersect(const box3i& a, const box3i& b) { return {glm::max(a.min, b.min), glm::min(a.max, b.max)}; }
+
+// What op does to a voxel holding `old`.
+inline std::uint8_t edited_value(edit_op op, std::uint8_t value, std::uint8_t old) {
+    return op == edit_op::fill ? value : op == edit_op::erase ? 0 : (old ? value : 0);
+}
+
+// Region edit on the chunk at world position `origin` (voxels v), inside `world` only.
+template <class Region>
+bool write_region(const Region& region, edit_op op, std::uint8_t value, glm::ivec3 origin, const box3i& world,
+                  voxel_model::chunk& v) {
+    box3i q = intersect(intersect({origin, origin + chunk_edge}, region.bounds()), world);
+    if (q.empty()) return false;
+    bool changed = false;
+    for (int z = q.min.z; z < q.max.z; ++z)
+        for (int y = q.min.y; y < q.max.y; ++y) {
+            auto [a, b] = region.span(y, z, q.min.x, q.max.x);
+            std::uint8_t* row = v.voxels.data() + voxel_model::local_index({0, y, z});
+            for (int x = a; x < b; ++x) {
+                std::uint8_t& voxel = row[x - origin.x];
+                std::uint8_t next = edited_value(op, value, voxel);
+                changed |= next != voxel;
+                voxel = next;
+            }
+        }
+    return changed;
+}
+
+}  // namespace naadf_detail
+
+// One chunk between its parallel rebuild and its commit.
+struct naadf::edited_chunk {
+    glm::ivec3 origin{0};  // world position of its voxel (0,0,0): a multiple of 16
+    bool changed = false;
+    bool empty = false;
+    std::int64_t delta = 0;  // solid voxels gained
+    naadf_detail::built_chunk built;
+    std::vector<std::uint32_t> hashes;                // per group of built
+    std::vector<naadf_detail::voxel_group> fielded;   // per group: as the blob holds it
+};
+
+inline naadf::naadf(const voxel_model& model, naadf_options options) : outside_(options.outside) {
+    auto start = std::chrono::steady_clock::now();
+    auto built = naadf_detail::build(model, options);
+    grid_ = naadf_detail::grid_placement(built.bounds);
+    store_.adopt(std::move(built.words), options.headroom);
+    groups_ = std::move(built.groups);
+    voxel_count_ = model.voxel_count();
+    palette_ = model.palette();
+    stale_flag_.assign(grid_.page_count, 0);
+    touched_flag_.assign(grid_.page_count, 0);
+    if (options.distance_fields && options.defer_chunk_fields) {
+        for (std::uint64_t slot = 0; slot < grid_.page_count; ++slot)
+            if (VX_NA_STATE(*store_.page_cell(slot)) == VX_NA_MIXED) mark_stale(slot);
+        table_stale_ = true;
+    }
+    build_seconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+inline naadf::naadf(naadf_detail::cell_store store, naadf_detail::group_table groups, box3i bounds, std::uint64_t voxels,
+                    voxray::palette palette)
+    : store_(std::move(store)), groups_(std::move(groups)), grid_(bounds), voxel_count_(voxels), palette_(std::move(palette)) {
+    stale_flag_.assign(grid_.page_count, 0);
+    touched_flag_.assign(grid_.page_count, 0);
+}
+
+inline std::uint32_t naadf::chunk_cell(glm::ivec3 grid) const {
+    std::uint32_t page = *store_.page_cell(page_slot(grid));
+    if (VX_NA_STATE(page) != VX_NA_MIXED) return VX_NA_STATE(page) == VX_NA_UNIFORM ? page : 0u;
+    auto g = glm::uvec3(grid);
+    return store_.chunk_array(VX_NA_PAYLOAD(page))[VX_NA_CHUNK_INDEX(g.x, g.y, g.z)];
+}
+
+inline naadf::payload_type naadf::get(glm::ivec3 p) const {
+    std::shared_lock lock(locks_.m);
+    if (!grid_.bounds.contains(p)) return 0;
+    glm::ivec3 grid = p - grid_.origin;
+    auto g = glm::uvec3(grid);
+    std::uint32_t cell = chunk_cell(grid);
+    if (VX_NA_STATE(cell) == VX_NA_MIXED) cell = store_.block_array(VX_NA_PAYLOAD(cell))[VX_NA_BLOCK_INDEX(g.x, g.y, g.z)];
+    if (VX_NA_STATE(cell) == VX_NA_UNIFORM) return payload_type(cell & VX_NA_TYPE_MASK);
+    if (VX_NA_STATE(cell) != VX_NA_MIXED) return 0;
+    std::uint32_t i = VX_NA_VOXEL_INDEX(g.x, g.y, g.z);
+    std::uint32_t voxel = store_.group(VX_NA_PAYLOAD(cell))[VX_NA_VOXEL_WORD(i)] >> VX_NA_VOXEL_SHIFT(i);
+    return voxel & VX_NA_VOXEL_SOLID ? payload_type(voxel & VX_NA_TYPE_MASK) : 0;
+}
+
+inline std::vector<glm::ivec3> naadf::chunks_of(const box3i& b) const {
+    std::vector<glm::ivec3> out;
+    if (b.empty()) return out;
+    glm::ivec3 lo = (b.min - grid_.origin) >> VX_NA_CHUNK_BITS, hi = (b.max - 1 - grid_.origin) >> VX_NA_CHUNK_BITS;
+    for (int z = lo.z; z <= hi.z; ++z)
+        for (int y = lo.y; y <= hi.y; ++y)
+            for (int x = lo.x; x <= hi.x; ++x) out.push_back(grid_.origin + glm::ivec3(x, y, z) * naadf_detail::chunk_edge);
+    return out;
+}
+
+inline void naadf::apply_batch(std::span<const edit> edits, unsigned threads) {
+    if (edits.size() >= (1u << 20)) {  // keep the edit index in 20 bits
+        apply_batch(edits.first(std::size_t(1) << 19), threads);
+        return apply_batch(edits.subspan(std::size_t(1) << 19), threads);
+    }
+    std::unique_lock lock(locks_.m);
+    for (const edit& e : edits)
+        if (e.value != 0 && e.op == edit_op::fill) std::visit([&](const auto& r) { make_room(r.exact_bounds()); }, e.region);
+    // (chunk, edit) pairs sorted by chunk: each chunk sees its edits in the given order.
+    const box3i world = grid_.bounds;
+    const glm::ivec3 dim = grid_.pages * (1 << (VX_NA_PAGE_BITS - VX_NA_CHUNK_BITS));
+    std::vector<std::uint64_t> keys;
+    for (std::size_t i = 0; i < edits.size(); ++i)
+        std::visit(
+            [&](const auto& r) {
+                for (glm::ivec3 c : chunks_of(naadf_detail::intersect(r.bounds(), world))) {
+                    if (!r.touches(box3i{c, c + naadf_detail::chunk_edge})) continue;
+                    glm::ivec3 k = (c - grid_.origin) >> VX_NA_CHUNK_BITS;
+                    std::uint64_t linear = std::uint64_t(k.x) + std::uint64_t(dim.x) * (std::uint64_t(k.y) + std::uint64_t(dim.y) * k.z);
+                    keys.push_back(linear << 20 | i);
+                }
+            },
+            edits[i].region);
+    std::sort(keys.begin(), keys.end());
+    std::vector<std::size_t> starts;
+    std::vector<glm::ivec3> chunks;
+    for (std::size_t k = 0; k < keys.size(); ++k)
+        if (k == 0 || (keys[k] >> 20) != (keys[k - 1] >> 20)) {
+            starts.push_back(k);
+            std::uint64_t linear = keys[k] >> 20;
+            glm::ivec3 c(int(linear % dim.x), int(linear / dim.x % dim.y), int(linear / dim.x / dim.y));
+            chunks.push_back(grid_.origin + c * naadf_detail::chunk_edge);
+        }
+    starts.push_back(keys.size());
+    edit_chunks(chunks, threads, [&](std::size_t n, glm::ivec3 origin, voxel_model::chunk& v) {
+        bool changed = false;
+        for (std::size_t k = starts[n]; k < starts[n + 1]; ++k) {
+            const edit& e = edits[keys[k] & 0xFFFFF];
+            edit_op op = e.value == 0 ? edit_op::erase : e.op;
+            std::visit([&](const auto& r) { changed |= naadf_detail::write_region(r, op, e.value, origin, world, v); }, e.region);
+        }
+        return changed;
+    });
+}
+
+inline void naadf::apply_line(glm::ivec3 a, glm::ivec3 b, int radius, edit_op op, payload_type v, unsigned threads) {
+    if (radius > 0) return apply(regions::capsule{a, b, radius}, op, v, threads);
+    if (v == 0) op = edit_op::erase;
+    std::unique_lock lock(locks_.m);
+    if (op == edit_op::fill) make_room(regions::capsule{a, b, 0}.exact_bounds());
+    // The line's voxels by chunk: chunk origin, then voxel index in the chunk.
+    std::vector<std::pair<glm::ivec3, std::uint16_t>> voxels;
+    regions::line_voxels_in(a, b, grid_.bounds, [&](glm::ivec3 p) {
+        glm::ivec3 local = (p - grid_.origin) & (naadf_detail::chunk_edge - 1);
+        voxels.emplace_back(p - local, std::uint16_t(voxel_model::local_index(local)));
+    });
+    auto before = [](const auto& x, const auto& y) {
+        return std::tie(x.first.z, x.first.y, x.first.x, x.second) < std::tie(y.first.z, y.first.y, y.first.x, y.second);
+    };
+    std::sort(voxels.begin(), voxels.end(), before);
+    std::vector<glm::ivec3> chunks;
+    std::vector<std::size_t> starts;
+    for (std::size_t i = 0; i < voxels.size(); ++i)
+        if (i == 0 || voxels[i].first != voxels[i - 1].first) {
+            chunks.push_back(voxels[i].first);
+            starts.push_back(i);
+        }
+    starts.push_back(voxels.size());
+    edit_chunks(chunks, threads, [&](std::size_t n, glm::ivec3, voxel_model::chunk& c) {
+        bool changed = false;
+        for (std::size_t i = starts[n]; i < starts[n + 1]; ++i) {
+            std::uint8_t& voxel = c.voxels[voxels[i].second];
+            std::uint8_t next = naadf_detail::edited_value(op, v, voxel);
+            changed |= next != voxel;
+            voxel = next;
+        }
+        return changed;
+    });
+}
+
+inline void naadf::copy_region(box3i src, glm::ivec3 offset, edit_op op, bool replace, unsigned threads) {
+    std::unique_lock lock(locks_.m);
+    src = naadf_detail::intersect(src, grid_.bounds);
+    if (src.empty()) return;
+    if (replace || op == edit_op::fill)
+        make_room({glm::i64vec3(src.min) + glm::i64vec3(offset), glm::i64vec3(src.max) + glm::i64vec3(offset)});
+    // The source first, chunk by chunk (overlapping copies read the old contents).
+    glm::ivec3 ext = src.extent();
+    std::vector<std::uint8_t> values(src.volume());
+    voxel_model::chunk v;
+    for (glm::ivec3 c : chunks_of(src)) {
+        naadf_detail::decode_chunk(chunk_cell(c - grid_.origin), store_.block_array(0), store_.group(0), v);
+        box3i q = naadf_detail::intersect({c, c + naadf_detail::chunk_edge}, src);
+        for (int z = q.min.z; z < q.max.z; ++z)
+            for (int y = q.min.y; y < q.max.y; ++y)
+                for (int x = q.min.x; x < q.max.x; ++x) {
+                    glm::ivec3 s = glm::ivec3(x, y, z) - src.min;
+                    values[(std::size_t(s.z) * ext.y + s.y) * ext.x + s.x] = v.voxels[voxel_model::local_index(glm::ivec3(x, y, z) - c)];
+                }
+    }
+    box3i dst = naadf_detail::intersect({src.min + offset, src.max + offset}, grid_.bounds);
+    edit_chunks(chunks_of(dst), threads, [&](std::size_t, glm::ivec3 origin, voxel_model::chunk& c) {
+        box3i q = naadf_detail::intersect({origin, origin + naadf_detail::chunk_edge}, dst);
+        bool changed = false;
+        for (int z = q.min.z; z < q.max.z; ++z)
+            for (int y = q.min.y; y < q.max.y; ++y)
+                for (int x = q.min.x; x < q.max.x; ++x) {
+                    glm::ivec3 s = glm::ivec3(x, y, z) - offset - src.min;
+                    std::uint8_t from = values[(std::size_t(s.z) * ext.y + s.y) * ext.x + s.x];
+                    if (!replace && from == 0) continue;
+                    std::uint8_t& voxel = c.voxels[voxel_model::local_index(glm::ivec3(x, y, z) - origin)];
+                    std::uint8_t next = replace ? from : naadf_detail::edited_value(op, from, voxel);
+                    changed |= next != voxel;
+                    voxel = next;
+                }
+        return changed;
+    });
+}
+
+template <class ChunkEdit>
+void naadf::edit_chunks(const std::vector<glm::ivec3>& chunks, unsigned threads, ChunkEdit&& chunk_edit) {
+    // Batches bound the memory of rebuilt chunks waiting for their commit.
+    constexpr std::size_t batch = 1024;
+    std::vector<edited_chunk> results(std::min(batch, chunks.size()));
+    for (std::size_t begin = 0; begin < chunks.size(); begin += batch) {
+        std::size_t n = std::min(batch, chunks.size() - begin);
+        std::atomic<std::size_t> next{0};
+        // A chunk rebuild costs tens of microseconds: a thread pays off from a few chunks.
+        run_build_threads(resolve_build_threads(threads, n / 4), [&](unsigned) {
+            voxel_model::chunk v;
+            for (;;) {
+                std::size_t k = next.fetch_add(1, std::memory_order_relaxed);
+                if (k >= n) break;
+                edited_chunk& c = results[k];
+                c.origin = chunks[begin + k];
+                naadf_detail::decode_chunk(chunk_cell(c.origin - grid_.origin), store_.block_array(0), store_.group(0), v);
+                std::int64_t before = naadf_detail::solid_voxels(v);
+                c.changed = chunk_edit(begin + k, c.origin, v);
+                if (!c.changed) continue;
+                std::int64_t after = naadf_detail::solid_voxels(v);
+                c.delta = after - before;
+                c.empty = after == 0;
+                if (!c.empty) rebuild(c, v);
+            }
+        });
+        for (std::size_t k = 0; k < n; ++k)
+            if (results[k].changed) commit(results[k]);
+    }
+    settle_pages();
+}
+
+inline void naadf::rebuild(edited_chunk& c, const voxel_model::chunk& v) const {
+    naadf_detail::build_chunk(v, true, c.built);
+    std::size_t groups = c.built.groups.size();
+    c.hashes.resize(groups);
+    c.fielded.resize(groups);
+    for (std::size_t i = 0; i < groups; ++i) {
+        c.hashes[i] = naadf_detail::group_hash(c.built.groups[i]);
+        c.fielded[i] = c.built.groups[i];
+        naadf_detail::add_fields(c.fielded[i].data());
+    }
+}
+
+inline void naadf::touch(std::uint64_t slot, unsigned flags) {
+    if (!touched_flag_[slot]) touched_.push_back(slot);
+    touched_flag_[slot] |= std::uint8_t(flags);
+}
+
+inline void naadf::open_page(std::uint64_t slot) {
+    std::uint32_t page = *store_.page_cell(slot);
+    std::uint32_t index = store_.alloc_chunk_array();  // may re-lay the blob out
+    std::uint32_t* array = store_.chunk_array(index);
+    // The page's chunks as its cell implies: an empty page's fields are its own (in
+    // pages); its chunks start with field 0 and regrow.
+    std::fill_n(array, VX_NA_CHUNK_ARRAY_WORDS, VX_NA_STATE(page) == VX_NA_UNIFORM ? page : 0u);
+    store_.mark(array, VX_NA_CHUNK_ARRAY_WORDS);
+    std::uint32_t* cell = store_.page_cell(slot);
+    *cell = VX_NA_MIXED_CELL(index);
+    store_.mark(cell, 1);
+    touch(slot, VX_NA_STATE(page) == VX_NA_EMPTY ? page_was_empty : 0u);
+}
+
+inline void naadf::commit(edited_chunk& c) {
+    glm::ivec3 grid = c.origin - grid_.origin;
+    auto g = glm::uvec3(grid);
+    std::uint64_t slot = page_slot(grid);
+    if (VX_NA_STATE(*store_.page_cell(slot)) != VX_NA_MIXED) open_page(slot);
+    touch(slot, page_edited);
+    const std::uint32_t array = VX_NA_PAYLOAD(*store_.page_cell(slot)), at = VX_NA_CHUNK_INDEX(g.x, g.y, g.z);
+    const std::uint32_t old = store_.chunk_array(array)[at];
+    // The old chunk's groups, released only after the new ones are interned: a group
+    // both use keeps its index and its words.
+    std::array<std::uint32_t, 64> old_groups;
+    int old_count = 0;
+    if (VX_NA_STATE(old) == VX_NA_MIXED) {
+        const std::uint32_t* blocks = store_.block_array(VX_NA_PAYLOAD(old));
+        for (int b = 0; b < 64; ++b)
+            if (VX_NA_STATE(blocks[b]) == VX_NA_MIXED) old_groups[old_count++] = VX_NA_PAYLOAD(blocks[b]);
+    }
+    std::uint32_t cell = 0;  // empty; its field is reset, refine() grows it
+    if (!c.empty && VX_NA_STATE(c.built.cell) == VX_NA_UNIFORM) {
+        cell = c.built.cell;
+    } else if (!c.empty) {
+        store_.reserve_groups(groups_.size() + c.built.groups.size());
+        std::array<std::uint32_t, 64> blocks = c.built.blocks;
+        for (auto& b : blocks) {
+            if (VX_NA_STATE(b) != VX_NA_MIXED) continue;
+            std::uint32_t local = VX_NA_PAYLOAD(b);
+            auto r = groups_.intern(c.built.groups[local], c.hashes[local]);
+            if (r.added) {
+                std::uint32_t* words = store_.group(r.index);
+                std::copy(c.fielded[local].begin(), c.fielded[local].end(), words);
+                store_.mark(words, VX_NA_GROUP_WORDS);
+            }
+            b = VX_NA_MIXED_CELL(r.index);
+        }
+        std::uint32_t index = VX_NA_STATE(old) == VX_NA_MIXED ? VX_NA_PAYLOAD(old) : store_.alloc_block_array();
+        std::uint32_t* words = store_.block_array(index);
+        if (!std::equal(blocks.begin(), blocks.end(), words)) {
+            std::copy(blocks.begin(), blocks.end(), words);
+            store_.mark(words, VX_NA_BLOCK_ARRAY_WORDS);
+        }
+        cell = VX_NA_MIXED_CELL(index);
+    }
+    for (int i = 0; i < old_count; ++i) groups_.release(old_groups[i]);
+    if (VX_NA_STATE(old) == VX_NA_MIXED && VX_NA_STATE(cell) != VX_NA_MIXED) store_.free_block_array(VX_NA_PAYLOAD(old));
+    std::uint32_t* word = store_.chunk_array(array) + at;  // after any re-layout above
+    if (*word != cell) {
+        *word = cell;
+        store_.mark(word, 1);
+    }
+    bool was_empty = VX_NA_STATE(old) == VX_NA_EMPTY, is_empty = VX_NA_STATE(cell) == VX_NA_EMPTY;
+    if (was_empty && !is_empty) touch(slot, chunk_filled);
+    if (!was_empty && is_empty) touch(slot, chunk_emptied);
+    voxel_count_ = std::uint64_t(std::int64_t(voxel_count_) + c.delta);
+}
+
+inline void naadf::settle_pages() {
+    bool table_check = false;
+    for (std::uint64_t slot : touched_) {
+        unsigned flags = touched_flag_[slot];
+        touched_flag_[slot] = 0;
+        std::uint32_t* cell = store_.page_cell(slot);
+        if (VX_NA_STATE(*cell) != VX_NA_MIXED) continue;
+        std::uint32_t index = VX_NA_PAYLOAD(*cell);
+        std::uint32_t* array = store_.chunk_array(index);
+        if (flags & chunk_filled)
+            naadf_detail::reset_broken_fields(array, glm::ivec3(16), VX_NA_CHUNK_AADF_BITS,
+                                              [&](std::size_t i) { store_.mark(array + i, 1); });
+        std::uint32_t* end = array + VX_NA_CHUNK_ARRAY_WORDS;
+        bool all_empty = std::all_of(array, end, [](std::uint32_t c) { return VX_NA_STATE(c) == VX_NA_EMPTY; });
+        bool all_same = VX_NA_STATE(array[0]) == VX_NA_UNIFORM && std::all_of(array, end, [&](std::uint32_t c) { return c == array[0]; });
+        if (!all_empty && (flags & page_was_empty)) table_check = true;
+        if (all_empty || all_same) {  // collapse: the page cell says it all
+            *cell = all_empty ? 0u : array[0];
+            store_.mark(cell, 1);
+            store_.free_chunk_array(index);
+            table_stale_ |= all_empty;
+            continue;
+        }
+        if (flags & (chunk_filled | chunk_emptied)) mark_stale(slot);
+    }
+    touched_.clear();
+    if (table_check) {
+        std::uint32_t* table = store_.page_cell(0);
+        naadf_detail::reset_broken_fields(table, grid_.pages, VX_NA_PAGE_AADF_BITS, [&](std::size_t i) { store_.mark(table + i, 1); });
+        table_stale_ = true;
+    }
+}
+
+inline naadf_refine_progress naadf::refine(std::size_t budget) {
+    std::unique_lock lock(locks_.m);
+    for (; budget > 0 && !stale_.empty(); --budget) {
+        std::uint64_t slot = stale_.back();
+        stale_.pop_back();
+        stale_flag_[slot] = 0;
+        std::uint32_t page = *store_.page_cell(slot);
+        if (VX_NA_STATE(page) != VX_NA_MIXED) continue;
+        std::uint32_t* array = store_.chunk_array(VX_NA_PAYLOAD(page));
+        naadf_detail::regrow_fields(array, glm::ivec3(16), 15, VX_NA_CHUNK_AADF_BITS,
+                                    [&](std::size_t i) { store_.mark(array + i, 1); });
+    }
+    if (budget > 0 && table_stale_) {
+        std::uint32_t* table = store_.page_cell(0);
+        naadf_detail::regrow_fields(table, grid_.pages, 31, VX_NA_PAGE_AADF_BITS, [&](std::size_t i) { store_.mark(table + i, 1); });
+        table_stale_ = false;
+    }
+    return {stale_.size(), table_stale_};
+}
+
+inline void naadf::make_room(const regions::box64& need) {
+    const box3i& world = grid_.bounds;
+    if (need.inside(world) || outside_ == outside_edits::clip) return;
+    if (outside_ == outside_edits::fail) world_growth::refuse(world, need, "naadf");
+    regrid(world.empty() ? need.saturated() : world_growth::grown(world, need, 1 << VX_NA_PAGE_BITS, "naadf"));
+}
+
+// The world grows to `world`: the same page table when it still covers it (only the
+// header moves), else a bigger table with the old pages copied to their new slots (a
+// re-layout: the blob is sent whole once).
+inline void naadf::regrid(const box3i& world) {
+    naadf_detail::grid_placement next(world);
+    if (next.origin == grid_.origin && next.pages == grid_.pages) {
+        grid_ = next;
+        next.write_header(store_.words());
+        store_.mark(store_.words() + VX_NA_HEADER_ORIGIN, VX_NA_HEADER_PAGE_TABLE - VX_NA_HEADER_ORIGIN);
+        return;
+    }
+    std::vector<std::uint32_t> old(store_.page_cell(0), store_.page_cell(0) + grid_.page_count);
+    glm::ivec3 move = (grid_.origin - next.origin) >> VX_NA_PAGE_BITS;
+    store_.resize_table(next.page_count);
+    std::uint32_t* table = store_.page_cell(0);
+    std::fill_n(table, next.page_count, 0u);
+    auto new_slot = [&](std::uint64_t slot) {
+        std::uint64_t px = grid_.pages.x, py = grid_.pages.y;
+        glm::u64vec3 p(slot % px + move.x, slot / px % py + move.y, slot / px / py + move.z);
+        return p.x + std::uint64_t(next.pages.x) * (p.y + std::uint64_t(next.pages.y) * p.z);
+    };
+    // Old fields stay valid (the new pages are empty) but are capped at the old table's
+    // edges: refine() grows them across the new space.
+    for (std::uint64_t slot = 0; slot < old.size(); ++slot) table[new_slot(slot)] = old[slot];
+    std::vector<std::uint64_t> stale;
+    for (std::uint64_t slot : stale_) stale.push_back(new_slot(slot));
+    stale_flag_.assign(next.page_count, 0);
+    touched_flag_.assign(next.page_count, 0);
+    stale_.clear();
+    grid_ = next;
+    for (std::uint64_t slot : stale) mark_stale(slot);
+    next.write_header(store_.words());
+    table_stale_ = true;
+}
+
+inline naadf_stats naadf::stats() const {
+    std::shared_lock lock(locks_.m);
+    naadf_stats s;
+    s.pages = grid_.page_count;
+    s.mixed_pages = store_.chunk_arrays_used();
+    s.mixed_chunks = store_.block_arrays_used();
+    s.groups = groups_.live();
+    for (std::uint64_t slot = 0; slot < grid_.page_count; ++slot) {
+        std::uint32_t page = *store_.page_cell(slot);
+        if (VX_NA_STATE(page) != VX_NA_MIXED) continue;
+        const std::uint32_t* chunks = store_.chunk_array(VX_NA_PAYLOAD(page));
+        for (int c = 0; c < VX_NA_CHUNK_ARRAY_WORDS; ++c) {
+            s.uniform_chunks += VX_NA_STATE(chunks[c]) == VX_NA_UNIFORM;
+            if (VX_NA_STATE(chunks[c]) != VX_NA_MIXED) continue;
+            const std::uint32_t* blocks = store_.block_array(VX_NA_PAYLOAD(chunks[c]));
+            for (int b = 0; b < 64; ++b) s.mixed_blocks += VX_NA_STATE(blocks[b]) == VX_NA_MIXED;
+        }
+    }
+    return s;
+}
+
+}  // namespace voxray
