@@ -4,6 +4,7 @@
 // wrapping each combination behind this small virtual interface (outside the hot loop).
 // Baselines (Embree, NanoVDB) are not tracer structures; they come from their own list.
 #pragma once
+#include <chrono>
 #include <memory>
 #include <span>
 #include <string>
@@ -93,6 +94,8 @@ public:
     virtual void apply_edits(std::span<const region_edit>, unsigned /* threads */ = 1) {
         fail("structure ", name(), " is not editable");
     }
+    // How long the last apply_edits spent regrowing distance fields (NAADF's refine).
+    virtual double last_refine_seconds() const { return 0; }
 };
 
 template <class Backend, class Structure>
@@ -131,8 +134,13 @@ public:
                 for (auto& e : edits)
                     std::visit([&](const auto& r) { structure->apply(r, e.op, payload(e.value), threads); }, e.region);
             }
-            // Distance fields the edits reset grow back now (NAADF): part of an edit's cost.
-            if constexpr (requires { structure->refine(); }) structure->refine();
+            // Distance fields the edits reset grow back now (NAADF); timed apart, since an
+            // engine may spread it over frames (refine(budget)).
+            if constexpr (requires { structure->refine(); }) {
+                auto start = std::chrono::steady_clock::now();
+                structure->refine(SIZE_MAX, threads);
+                refine_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+            }
             auto taken = structure->take_dirty_ranges();
             ranges.assign(taken.begin(), taken.end());
         } else {
@@ -148,7 +156,10 @@ public:
     }
 
     std::shared_ptr<Structure> structure;
+    double last_refine_seconds() const override { return refine_seconds; }
+
     std::vector<word_range> ranges;  // dirty ranges of the last apply_edits
+    double refine_seconds = 0;       // of the last apply_edits (part of its time)
 };
 
 template <class Backend, class Structure>

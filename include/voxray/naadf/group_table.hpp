@@ -72,6 +72,17 @@ public:
     }
     std::uint32_t intern(const voxel_group& g) { return intern(g, group_hash(g)).index; }
 
+    // Whether group g (hash h) is in the table, without adding it: safe from many
+    // threads while nobody interns or releases.
+    bool contains(const voxel_group& g, std::uint32_t h) const {
+        std::size_t mask = slots_.size() - 1;
+        for (std::size_t i = home(h, slots_.size());; i = (i + 1) & mask) {
+            std::uint32_t index = slots_[i];
+            if (index == free_slot) return false;
+            if (hashes_[index] == h && same(index, g)) return true;
+        }
+    }
+
     // One user fewer; the last one's release frees the group's index for reuse.
     void release(std::uint32_t index) {
         if (--users_[index] != 0) return;

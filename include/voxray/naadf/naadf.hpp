@@ -16,10 +16,12 @@
 #pragma once
 #include <chrono>
 #include <cstdint>
+#include <memory>
 #include <mutex>
 #include <shared_mutex>
 #include <span>
 #include <string_view>
+#include <unordered_map>
 #include <variant>
 #include <vector>
 
@@ -32,6 +34,7 @@
 #include "voxray/model/voxel_model.hpp"
 #include "voxray/naadf/builder.hpp"
 #include "voxray/naadf/cell_store.hpp"
+#include "voxray/naadf/field_upkeep.hpp"
 #include "voxray/sync/change_log.hpp"
 
 #define VOXRAY_KERNEL_NAME naadf
@@ -103,9 +106,10 @@ public:
 
     // ---- distance fields ----
     // Grows the chunk fields of up to `budget` pages that edits (or a build with
-    // defer_chunk_fields) left short, then the page table's; resumable, and the structure
-    // is exact before, during and after. Returns what is left.
-    naadf_refine_progress refine(std::size_t budget = SIZE_MAX);
+    // defer_chunk_fields) left short, then the page table's (one more unit of budget);
+    // resumable, and the structure is exact before, during and after. `threads` share out
+    // the pages. Returns what is left.
+    naadf_refine_progress refine(std::size_t budget = SIZE_MAX, unsigned threads = 1);
     naadf_refine_progress refine_progress() const {
         std::shared_lock lock(locks_.m);
         return {stale_.size(), table_stale_};
@@ -172,7 +176,7 @@ private:
     // Chunk edits (naadf_edit.hpp).
     template <class ChunkEdit>
     void edit_chunks(const std::vector<glm::ivec3>& chunks, unsigned threads, ChunkEdit&& chunk_edit);
-    void rebuild(edited_chunk& c, const voxel_model::chunk& v) const;
+    void rebuild(edited_chunk& c, const voxel_model::chunk& v, naadf_detail::field_cache& cache) const;
     void commit(edited_chunk& c);
     void open_page(std::uint64_t slot);
     void touch(std::uint64_t slot, unsigned flags);
@@ -187,10 +191,14 @@ private:
         return VX_NA_PAGE_SLOT(std::uint64_t(g.x), std::uint64_t(g.y), std::uint64_t(g.z), std::uint64_t(grid_.pages.x),
                                std::uint64_t(grid_.pages.x) * grid_.pages.y);
     }
-    void mark_stale(std::uint64_t slot) {
-        if (stale_flag_[slot]) return;
-        stale_flag_[slot] = 1;
-        stale_.push_back(slot);
+    // Chunks of page `slot` whose fields refine() should regrow.
+    void mark_stale(std::uint64_t slot, const naadf_detail::page_cells& cells) {
+        if (stale_at_[slot]) {
+            stale_[stale_at_[slot] - 1].cells |= cells;
+            return;
+        }
+        stale_.push_back({slot, cells});
+        stale_at_[slot] = std::uint32_t(stale_.size());
     }
     void commit_locked() const { log_.commit(store_.dirty(), std::uint32_t(store_.blob().size()), 0, 0); }
 
@@ -202,14 +210,30 @@ private:
     std::uint64_t voxel_count_ = 0;
     voxray::palette palette_;
     double build_seconds_ = 0;
-    // Pages whose chunk fields refine() should grow, and the page table's.
-    std::vector<std::uint64_t> stale_;
-    std::vector<std::uint8_t> stale_flag_;
+    // Pages whose chunk fields refine() should grow (which chunks), and the page table's.
+    struct stale_page {
+        std::uint64_t slot;
+        naadf_detail::page_cells cells;
+    };
+    std::vector<stale_page> stale_;
+    std::vector<std::uint32_t> stale_at_;  // per page slot: its index in stale_ + 1, or 0
     bool table_stale_ = false;
+    std::unordered_map<std::uint64_t, naadf_detail::page_cells> emptied_;  // chunks the current edit emptied
     // Pages the current edit touched, and what happened to them.
-    enum : unsigned { page_edited = 1, chunk_filled = 2, chunk_emptied = 4, page_was_empty = 8 };
+    enum : unsigned { page_edited = 1, chunk_filled = 2, page_was_empty = 4 };
     std::vector<std::uint64_t> touched_;
     std::vector<std::uint8_t> touched_flag_;
+    std::vector<std::uint32_t> released_;  // groups the current edit batch stopped using
+    // Kept between edits: rebuilt chunks waiting for their commit, and each worker's
+    // cache of voxel fields. A copied or moved naadf starts with none.
+    struct edit_scratch {
+        std::vector<edited_chunk> chunks;
+        std::vector<std::unique_ptr<naadf_detail::field_cache>> caches;
+        edit_scratch() = default;
+        edit_scratch(const edit_scratch&) {}
+        edit_scratch& operator=(const edit_scratch&) { return *this; }
+    };
+    edit_scratch scratch_;
     mutable change_log log_;
     std::uint64_t taken_ = 0;
 };

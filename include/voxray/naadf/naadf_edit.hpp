@@ -61,13 +61,19 @@ bool write_region(const Region& region, edit_op op, std::uint8_t value, glm::ive
     for (int z = q.min.z; z < q.max.z; ++z)
         for (int y = q.min.y; y < q.max.y; ++y) {
             auto [a, b] = region.span(y, z, q.min.x, q.max.x);
-            std::uint8_t* row = v.voxels.data() + voxel_model::local_index({0, y, z});
-            for (int x = a; x < b; ++x) {
-                std::uint8_t& voxel = row[x - origin.x];
-                std::uint8_t next = edited_value(op, value, voxel);
-                changed |= next != voxel;
-                voxel = next;
+            if (a >= b) continue;
+            std::uint8_t* first = v.voxels.data() + voxel_model::local_index({a, y, z});
+            std::uint8_t* last = first + (b - a);
+            if (op == edit_op::paint) {
+                for (std::uint8_t* p = first; p < last; ++p) {
+                    changed |= *p && *p != value;
+                    *p = *p ? value : 0;
+                }
+                continue;
             }
+            std::uint8_t fill = op == edit_op::fill ? value : 0;  // whole runs: compare, then set
+            changed = changed || std::any_of(first, last, [&](std::uint8_t p) { return p != fill; });
+            std::fill(first, last, fill);
         }
     return changed;
 }
@@ -93,11 +99,11 @@ inline naadf::naadf(const voxel_model& model, naadf_options options) : outside_(
     groups_ = std::move(built.groups);
     voxel_count_ = model.voxel_count();
     palette_ = model.palette();
-    stale_flag_.assign(grid_.page_count, 0);
+    stale_at_.assign(grid_.page_count, 0);
     touched_flag_.assign(grid_.page_count, 0);
     if (options.distance_fields && options.defer_chunk_fields) {
         for (std::uint64_t slot = 0; slot < grid_.page_count; ++slot)
-            if (VX_NA_STATE(*store_.page_cell(slot)) == VX_NA_MIXED) mark_stale(slot);
+            if (VX_NA_STATE(*store_.page_cell(slot)) == VX_NA_MIXED) mark_stale(slot, naadf_detail::page_cells().set());
         table_stale_ = true;
     }
     build_seconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -106,7 +112,7 @@ inline naadf::naadf(const voxel_model& model, naadf_options options) : outside_(
 inline naadf::naadf(naadf_detail::cell_store store, naadf_detail::group_table groups, box3i bounds, std::uint64_t voxels,
                     voxray::palette palette)
     : store_(std::move(store)), groups_(std::move(groups)), grid_(bounds), voxel_count_(voxels), palette_(std::move(palette)) {
-    stale_flag_.assign(grid_.page_count, 0);
+    stale_at_.assign(grid_.page_count, 0);
     touched_flag_.assign(grid_.page_count, 0);
 }
 
@@ -263,13 +269,18 @@ inline void naadf::copy_region(box3i src, glm::ivec3 offset, edit_op op, bool re
 template <class ChunkEdit>
 void naadf::edit_chunks(const std::vector<glm::ivec3>& chunks, unsigned threads, ChunkEdit&& chunk_edit) {
     // Batches bound the memory of rebuilt chunks waiting for their commit.
+    // Their buffers and the workers' field caches live on between edits.
     constexpr std::size_t batch = 1024;
-    std::vector<edited_chunk> results(std::min(batch, chunks.size()));
+    std::vector<edited_chunk>& results = scratch_.chunks;
+    if (results.size() < std::min(batch, chunks.size())) results.resize(std::min(batch, chunks.size()));
     for (std::size_t begin = 0; begin < chunks.size(); begin += batch) {
         std::size_t n = std::min(batch, chunks.size() - begin);
         std::atomic<std::size_t> next{0};
         // A chunk rebuild costs tens of microseconds: a thread pays off from a few chunks.
-        run_build_threads(resolve_build_threads(threads, n / 4), [&](unsigned) {
+        unsigned workers = resolve_build_threads(threads, n / 4);
+        while (scratch_.caches.size() < workers) scratch_.caches.push_back(std::make_unique<naadf_detail::field_cache>());
+        run_build_threads(workers, [&](unsigned id) {
+            naadf_detail::field_cache& cache = *scratch_.caches[id];
             voxel_model::chunk v;
             for (;;) {
                 std::size_t k = next.fetch_add(1, std::memory_order_relaxed);
@@ -283,24 +294,31 @@ void naadf::edit_chunks(const std::vector<glm::ivec3>& chunks, unsigned threads,
                 std::int64_t after = naadf_detail::solid_voxels(v);
                 c.delta = after - before;
                 c.empty = after == 0;
-                if (!c.empty) rebuild(c, v);
+                if (!c.empty) rebuild(c, v, cache);
             }
         });
         for (std::size_t k = 0; k < n; ++k)
             if (results[k].changed) commit(results[k]);
+        // Old groups are released only now: a group a rebuild found in the table (and
+        // so did not give fields) must still be there when its chunk is committed.
+        for (std::uint32_t g : released_) groups_.release(g);
+        released_.clear();
     }
     settle_pages();
 }
 
-inline void naadf::rebuild(edited_chunk& c, const voxel_model::chunk& v) const {
+inline void naadf::rebuild(edited_chunk& c, const voxel_model::chunk& v, naadf_detail::field_cache& cache) const {
     naadf_detail::build_chunk(v, true, c.built);
     std::size_t groups = c.built.groups.size();
     c.hashes.resize(groups);
     c.fielded.resize(groups);
+    // Fields only for groups the table does not hold yet: a known group's words are in
+    // the blob already (commit writes only new ones).
     for (std::size_t i = 0; i < groups; ++i) {
         c.hashes[i] = naadf_detail::group_hash(c.built.groups[i]);
+        if (groups_.contains(c.built.groups[i], c.hashes[i])) continue;
         c.fielded[i] = c.built.groups[i];
-        naadf_detail::add_fields(c.fielded[i].data());
+        naadf_detail::add_fields(c.fielded[i].data(), cache);
     }
 }
 
@@ -331,14 +349,12 @@ inline void naadf::commit(edited_chunk& c) {
     touch(slot, page_edited);
     const std::uint32_t array = VX_NA_PAYLOAD(*store_.page_cell(slot)), at = VX_NA_CHUNK_INDEX(g.x, g.y, g.z);
     const std::uint32_t old = store_.chunk_array(array)[at];
-    // The old chunk's groups, released only after the new ones are interned: a group
-    // both use keeps its index and its words.
-    std::array<std::uint32_t, 64> old_groups;
-    int old_count = 0;
+    // The old chunk's groups are released after the whole batch is committed (see
+    // edit_chunks): a group both use keeps its index and its words.
     if (VX_NA_STATE(old) == VX_NA_MIXED) {
         const std::uint32_t* blocks = store_.block_array(VX_NA_PAYLOAD(old));
         for (int b = 0; b < 64; ++b)
-            if (VX_NA_STATE(blocks[b]) == VX_NA_MIXED) old_groups[old_count++] = VX_NA_PAYLOAD(blocks[b]);
+            if (VX_NA_STATE(blocks[b]) == VX_NA_MIXED) released_.push_back(VX_NA_PAYLOAD(blocks[b]));
     }
     std::uint32_t cell = 0;  // empty; its field is reset, refine() grows it
     if (!c.empty && VX_NA_STATE(c.built.cell) == VX_NA_UNIFORM) {
@@ -365,7 +381,6 @@ inline void naadf::commit(edited_chunk& c) {
         }
         cell = VX_NA_MIXED_CELL(index);
     }
-    for (int i = 0; i < old_count; ++i) groups_.release(old_groups[i]);
     if (VX_NA_STATE(old) == VX_NA_MIXED && VX_NA_STATE(cell) != VX_NA_MIXED) store_.free_block_array(VX_NA_PAYLOAD(old));
     std::uint32_t* word = store_.chunk_array(array) + at;  // after any re-layout above
     if (*word != cell) {
@@ -374,7 +389,7 @@ inline void naadf::commit(edited_chunk& c) {
     }
     bool was_empty = VX_NA_STATE(old) == VX_NA_EMPTY, is_empty = VX_NA_STATE(cell) == VX_NA_EMPTY;
     if (was_empty && !is_empty) touch(slot, chunk_filled);
-    if (!was_empty && is_empty) touch(slot, chunk_emptied);
+    if (!was_empty && is_empty) emptied_[slot].set(at);
     voxel_count_ = std::uint64_t(std::int64_t(voxel_count_) + c.delta);
 }
 
@@ -387,9 +402,14 @@ inline void naadf::settle_pages() {
         if (VX_NA_STATE(*cell) != VX_NA_MIXED) continue;
         std::uint32_t index = VX_NA_PAYLOAD(*cell);
         std::uint32_t* array = store_.chunk_array(index);
+        naadf_detail::page_cells regrow;  // the chunks whose fields refine() must grow
+        if (flags & page_was_empty) regrow.set();  // its chunks start with field 0
         if (flags & chunk_filled)
-            naadf_detail::reset_broken_fields(array, glm::ivec3(16), VX_NA_CHUNK_AADF_BITS,
-                                              [&](std::size_t i) { store_.mark(array + i, 1); });
+            naadf_detail::reset_broken_fields(array, glm::ivec3(16), VX_NA_CHUNK_AADF_BITS, [&](std::size_t i) {
+                store_.mark(array + i, 1);
+                regrow.set(i);
+            });
+        if (auto e = emptied_.find(slot); e != emptied_.end()) regrow |= e->second | naadf_detail::near_emptied(array, e->second);
         std::uint32_t* end = array + VX_NA_CHUNK_ARRAY_WORDS;
         bool all_empty = std::all_of(array, end, [](std::uint32_t c) { return VX_NA_STATE(c) == VX_NA_EMPTY; });
         bool all_same = VX_NA_STATE(array[0]) == VX_NA_UNIFORM && std::all_of(array, end, [&](std::uint32_t c) { return c == array[0]; });
@@ -401,9 +421,10 @@ inline void naadf::settle_pages() {
             table_stale_ |= all_empty;
             continue;
         }
-        if (flags & (chunk_filled | chunk_emptied)) mark_stale(slot);
+        if (regrow.any()) mark_stale(slot, regrow);
     }
     touched_.clear();
+    emptied_.clear();
     if (table_check) {
         std::uint32_t* table = store_.page_cell(0);
         naadf_detail::reset_broken_fields(table, grid_.pages, VX_NA_PAGE_AADF_BITS, [&](std::size_t i) { store_.mark(table + i, 1); });
@@ -411,19 +432,29 @@ inline void naadf::settle_pages() {
     }
 }
 
-inline naadf_refine_progress naadf::refine(std::size_t budget) {
+inline naadf_refine_progress naadf::refine(std::size_t budget, unsigned threads) {
     std::unique_lock lock(locks_.m);
-    for (; budget > 0 && !stale_.empty(); --budget) {
-        std::uint64_t slot = stale_.back();
-        stale_.pop_back();
-        stale_flag_[slot] = 0;
-        std::uint32_t page = *store_.page_cell(slot);
-        if (VX_NA_STATE(page) != VX_NA_MIXED) continue;
-        std::uint32_t* array = store_.chunk_array(VX_NA_PAYLOAD(page));
-        naadf_detail::regrow_fields(array, glm::ivec3(16), 15, VX_NA_CHUNK_AADF_BITS,
-                                    [&](std::size_t i) { store_.mark(array + i, 1); });
+    // Up to `budget` pages from the back of the list, regrown in parallel (each page's
+    // chunk array is its own), then their changed words marked in order.
+    std::size_t n = std::min(budget, stale_.size());
+    std::vector<stale_page> pages(stale_.end() - std::ptrdiff_t(n), stale_.end());
+    stale_.resize(stale_.size() - n);
+    for (auto& page : pages) stale_at_[page.slot] = 0;
+    std::vector<std::vector<std::uint32_t>> changed(n);
+    std::atomic<std::size_t> next{0};
+    run_build_threads(resolve_build_threads(threads, n), [&](unsigned) {
+        for (std::size_t k; (k = next.fetch_add(1)) < n;) {
+            std::uint32_t cell = *store_.page_cell(pages[k].slot);
+            if (VX_NA_STATE(cell) != VX_NA_MIXED) continue;
+            naadf_detail::regrow_page_fields(store_.chunk_array(VX_NA_PAYLOAD(cell)), pages[k].cells,
+                                             [&](std::size_t i) { changed[k].push_back(std::uint32_t(i)); });
+        }
+    });
+    for (std::size_t k = 0; k < n; ++k) {
+        std::uint32_t* array = store_.chunk_array(VX_NA_PAYLOAD(*store_.page_cell(pages[k].slot)));
+        for (std::uint32_t i : changed[k]) store_.mark(array + i, 1);
     }
-    if (budget > 0 && table_stale_) {
+    if (budget > n && table_stale_) {
         std::uint32_t* table = store_.page_cell(0);
         naadf_detail::regrow_fields(table, grid_.pages, 31, VX_NA_PAGE_AADF_BITS, [&](std::size_t i) { store_.mark(table + i, 1); });
         table_stale_ = false;
@@ -462,13 +493,11 @@ inline void naadf::regrid(const box3i& world) {
     // Old fields stay valid (the new pages are empty) but are capped at the old table's
     // edges: refine() grows them across the new space.
     for (std::uint64_t slot = 0; slot < old.size(); ++slot) table[new_slot(slot)] = old[slot];
-    std::vector<std::uint64_t> stale;
-    for (std::uint64_t slot : stale_) stale.push_back(new_slot(slot));
-    stale_flag_.assign(next.page_count, 0);
+    for (auto& page : stale_) page.slot = new_slot(page.slot);
+    stale_at_.assign(next.page_count, 0);
+    for (std::size_t i = 0; i < stale_.size(); ++i) stale_at_[stale_[i].slot] = std::uint32_t(i + 1);
     touched_flag_.assign(next.page_count, 0);
-    stale_.clear();
     grid_ = next;
-    for (std::uint64_t slot : stale) mark_stale(slot);
     next.write_header(store_.words());
     table_stale_ = true;
 }
