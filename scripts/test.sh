@@ -3,8 +3,8 @@
 # required (a missing OpenCL or Vulkan device fails, it does not skip). Then three CPU-only
 # passes, each a build without OpenCL, Vulkan and Embree (which also proves such a build
 # works) that configures and runs only the test folders its ctest labels select:
-#   ASan + UBSan  every CPU label (cpu, io, mesh, brickmap, sync, conformance, nanovdb);
-#   TSan          brickmap and sync: the threaded editing and the incremental updates;
+#   ASan + UBSan  every CPU label (cpu, io, mesh, brickmap, naadf, sync, conformance, nanovdb);
+#   TSan          brickmap, naadf and sync: the threaded editing and the incremental updates;
 #   clang++-14    every CPU label, built with clang instead of g++.
 # BUILD_DIR (default build/) names the main build; ASAN_DIR, TSAN_DIR and CLANG_DIR the
 # others (default: BUILD_DIR with -asan, -tsan, -clang).
@@ -39,7 +39,7 @@ ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 \
     cpu_pass "AddressSanitizer + UBSan" "${ASAN_DIR:-$BUILD_DIR-asan}" "$CPU_LABELS" "${SANITIZED[@]}" \
     -DVOXRAY_SANITIZE=address
 TSAN_OPTIONS="halt_on_error=1 second_deadlock_stack=1" \
-    cpu_pass "ThreadSanitizer" "${TSAN_DIR:-$BUILD_DIR-tsan}" '^(brickmap|sync)$' "${SANITIZED[@]}" \
+    cpu_pass "ThreadSanitizer" "${TSAN_DIR:-$BUILD_DIR-tsan}" '^(brickmap|naadf|sync)$' "${SANITIZED[@]}" \
     -DVOXRAY_SANITIZE=thread
 cpu_pass "clang++-14" "${CLANG_DIR:-$BUILD_DIR-clang}" "$CPU_LABELS" -DCMAKE_BUILD_TYPE=Release \
     -DCMAKE_CXX_COMPILER=clang++-14
