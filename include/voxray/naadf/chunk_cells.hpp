@@ -23,6 +23,7 @@ struct built_chunk {
     std::uint32_t cell = 0;                  // uniform, or mixed (index filled in later)
     std::array<std::uint32_t, 64> blocks{};  // mixed blocks hold their local group number
     std::vector<voxel_group> groups;
+    std::uint64_t kept = 0;  // mixed blocks not rebuilt (an edit left them as they were)
 };
 
 // Model-chunk offset of voxel i (x | y << 2 | z << 4) of a block, from the block's base.
@@ -35,10 +36,13 @@ inline const std::array<std::uint16_t, 64>& block_offsets() {
     return offsets;
 }
 
-// The cells of model chunk c; with `fields`, the empty blocks' AADFs too.
-inline void build_chunk(const voxel_model::chunk& c, bool fields, built_chunk& out) {
+// The cells of model chunk c; with `fields`, the empty blocks' AADFs too. Mixed blocks
+// outside `rebuild` get no group: they are marked in out.kept (an edit keeps their
+// old cell).
+inline void build_chunk(const voxel_model::chunk& c, bool fields, built_chunk& out, std::uint64_t rebuild = ~std::uint64_t(0)) {
     const auto& offsets = block_offsets();
     out.groups.clear();
+    out.kept = 0;
     std::uint64_t solid_blocks = 0;
     bool uniform = true;
     for (int b = 0; b < 64; ++b) {
@@ -61,6 +65,9 @@ inline void build_chunk(const voxel_model::chunk& c, bool fields, built_chunk& o
         std::uint32_t cell;
         if (same) {
             cell = VX_NA_UNIFORM_CELL(std::uint32_t(base[0]));
+        } else if (!(rebuild >> b & 1u)) {
+            cell = VX_NA_MIXED_CELL(0);
+            out.kept |= std::uint64_t(1) << b;
         } else {
             voxel_group g{};
             for (int i = 0; i < 64; ++i)

@@ -176,7 +176,7 @@ private:
     // Chunk edits (naadf_edit.hpp).
     template <class ChunkEdit>
     void edit_chunks(const std::vector<glm::ivec3>& chunks, unsigned threads, ChunkEdit&& chunk_edit);
-    void rebuild(edited_chunk& c, const voxel_model::chunk& v, naadf_detail::field_cache& cache) const;
+    void rebuild(edited_chunk& c, const voxel_model::chunk& v, std::uint64_t blocks, naadf_detail::field_cache& cache) const;
     void commit(edited_chunk& c);
     void open_page(std::uint64_t slot);
     void touch(std::uint64_t slot, unsigned flags);

@@ -44,6 +44,20 @@ inline std::int64_t solid_voxels(const voxel_model::chunk& c) {
     return n;
 }
 
+// Bit b set: block b (the layout's block index) of the two chunks differs.
+inline std::uint64_t changed_blocks(const voxel_model::chunk& a, const voxel_model::chunk& b) {
+    std::uint64_t mask = 0;
+    for (int row = 0; row < 256; ++row) {  // rows of 16 voxels: x blocks 0..3 of (y, z)
+        std::uint32_t x[4], y[4];
+        std::memcpy(x, a.voxels.data() + row * 16, 16);
+        std::memcpy(y, b.voxels.data() + row * 16, 16);
+        int base = ((row >> 2) & 3) << 2 | (row >> 6) << 4;  // block index of x block 0
+        for (int i = 0; i < 4; ++i)
+            if (x[i] != y[i]) mask |= std::uint64_t(1) << (base | i);
+    }
+    return mask;
+}
+
 inline box3i intersect(const box3i& a, const box3i& b) { return {glm::max(a.min, b.min), glm::min(a.max, b.max)}; }
 
 // What op does to a voxel holding `old`.
@@ -281,20 +295,24 @@ void naadf::edit_chunks(const std::vector<glm::ivec3>& chunks, unsigned threads,
         while (scratch_.caches.size() < workers) scratch_.caches.push_back(std::make_unique<naadf_detail::field_cache>());
         run_build_threads(workers, [&](unsigned id) {
             naadf_detail::field_cache& cache = *scratch_.caches[id];
-            voxel_model::chunk v;
+            voxel_model::chunk v, old;
             for (;;) {
                 std::size_t k = next.fetch_add(1, std::memory_order_relaxed);
                 if (k >= n) break;
                 edited_chunk& c = results[k];
                 c.origin = chunks[begin + k];
-                naadf_detail::decode_chunk(chunk_cell(c.origin - grid_.origin), store_.block_array(0), store_.group(0), v);
-                std::int64_t before = naadf_detail::solid_voxels(v);
+                naadf_detail::decode_chunk(chunk_cell(c.origin - grid_.origin), store_.block_array(0), store_.group(0), old);
+                v.voxels = old.voxels;
                 c.changed = chunk_edit(begin + k, c.origin, v);
+                // Only blocks whose voxels differ in the end are rebuilt: erasing a ball and
+                // filling it one voxel on leaves its inside as it was.
+                std::uint64_t blocks = c.changed ? naadf_detail::changed_blocks(old, v) : 0;
+                c.changed = blocks != 0;
                 if (!c.changed) continue;
                 std::int64_t after = naadf_detail::solid_voxels(v);
-                c.delta = after - before;
+                c.delta = after - naadf_detail::solid_voxels(old);
                 c.empty = after == 0;
-                if (!c.empty) rebuild(c, v, cache);
+                if (!c.empty) rebuild(c, v, blocks, cache);
             }
         });
         for (std::size_t k = 0; k < n; ++k)
@@ -307,8 +325,9 @@ void naadf::edit_chunks(const std::vector<glm::ivec3>& chunks, unsigned threads,
     settle_pages();
 }
 
-inline void naadf::rebuild(edited_chunk& c, const voxel_model::chunk& v, naadf_detail::field_cache& cache) const {
-    naadf_detail::build_chunk(v, true, c.built);
+inline void naadf::rebuild(edited_chunk& c, const voxel_model::chunk& v, std::uint64_t blocks,
+                           naadf_detail::field_cache& cache) const {
+    naadf_detail::build_chunk(v, true, c.built, blocks);
     std::size_t groups = c.built.groups.size();
     c.hashes.resize(groups);
     c.fielded.resize(groups);
@@ -350,11 +369,15 @@ inline void naadf::commit(edited_chunk& c) {
     const std::uint32_t array = VX_NA_PAYLOAD(*store_.page_cell(slot)), at = VX_NA_CHUNK_INDEX(g.x, g.y, g.z);
     const std::uint32_t old = store_.chunk_array(array)[at];
     // The old chunk's groups are released after the whole batch is committed (see
-    // edit_chunks): a group both use keeps its index and its words.
+    // edit_chunks): a group both use keeps its index and its words. Kept blocks keep
+    // theirs (only an old mixed chunk has any).
+    const std::uint64_t kept = c.empty ? 0 : c.built.kept;
+    std::array<std::uint32_t, 64> old_blocks{};
     if (VX_NA_STATE(old) == VX_NA_MIXED) {
         const std::uint32_t* blocks = store_.block_array(VX_NA_PAYLOAD(old));
+        std::copy(blocks, blocks + 64, old_blocks.begin());
         for (int b = 0; b < 64; ++b)
-            if (VX_NA_STATE(blocks[b]) == VX_NA_MIXED) released_.push_back(VX_NA_PAYLOAD(blocks[b]));
+            if (VX_NA_STATE(blocks[b]) == VX_NA_MIXED && !(kept >> b & 1u)) released_.push_back(VX_NA_PAYLOAD(blocks[b]));
     }
     std::uint32_t cell = 0;  // empty; its field is reset, refine() grows it
     if (!c.empty && VX_NA_STATE(c.built.cell) == VX_NA_UNIFORM) {
@@ -362,7 +385,12 @@ inline void naadf::commit(edited_chunk& c) {
     } else if (!c.empty) {
         store_.reserve_groups(groups_.size() + c.built.groups.size());
         std::array<std::uint32_t, 64> blocks = c.built.blocks;
-        for (auto& b : blocks) {
+        for (int i = 0; i < 64; ++i) {
+            auto& b = blocks[i];
+            if (kept >> i & 1u) {
+                b = old_blocks[i];
+                continue;
+            }
             if (VX_NA_STATE(b) != VX_NA_MIXED) continue;
             std::uint32_t local = VX_NA_PAYLOAD(b);
             auto r = groups_.intern(c.built.groups[local], c.hashes[local]);
