@@ -182,6 +182,15 @@ TEST(naadf_edit, fills_outside_the_world_grow_it_or_fail_or_clip_as_asked) {
     EXPECT_EQ(near.get({40, 3, 3}), 9);
     EXPECT_GE(near.bounds().max.x, 41);
 
+    // An empty structure takes its world from the first fill.
+    naadf empty;
+    empty.fill_sphere({1000, -5, 3}, 2, 4);
+    EXPECT_EQ(empty.get({1000, -5, 3}), 4);
+    EXPECT_EQ(empty.voxel_count(), 33u);
+    std::vector<hit> one(1);
+    tracer<cpu, naadf>(empty).closest_hit(std::vector<ray>{ray{{1000.5f, -4.5f, 100.f}, 0.f, {0, 0, -1}}}, one);
+    EXPECT_EQ(one[0].voxel, glm::ivec3(1000, -5, 5));
+
     auto before = std::vector<std::uint32_t>(fail_.blob().begin(), fail_.blob().end());
     EXPECT_THROW(fail_.apply(far, edit_op::fill, 42), error);
     EXPECT_TRUE(std::equal(before.begin(), before.end(), fail_.blob().begin(), fail_.blob().end()));
