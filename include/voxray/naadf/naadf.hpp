@@ -241,3 +241,4 @@ private:
 }  // namespace voxray
 
 #include "voxray/naadf/naadf_edit.hpp"
+#include "voxray/naadf/naadf_upkeep.hpp"

@@ -5,11 +5,13 @@
 //      build_chunk (blocks, block fields, groups with their voxel fields);
 //   2. in order, each rebuilt chunk is committed: its groups interned (new ones written
 //      to the blob), its block array rewritten in place (or taken from the free list),
-//      and the old groups released, so unreachable storage is reused;
+//      and the old groups released once the batch is in, so unreachable storage is
+//      reused;
 //   3. each touched page is settled: chunk fields the edit broke are reset to 0, a page
 //      that turned empty or uniform collapses, and the page table's fields are checked
 //      when a page turned non-empty. refine() grows the reset fields back later.
-// The blob is exact after every step a ray can see (all happen under the lock).
+// The blob is exact after every step a ray can see (all happen under the lock). Step 3,
+// refine() and world growth are in naadf_upkeep.hpp.
 #pragma once
 #include <algorithm>
 #include <atomic>
@@ -19,80 +21,12 @@
 #include <variant>
 #include <vector>
 
-#include "voxray/edit/world_growth.hpp"
 #include "voxray/model/build_threads.hpp"
 #include "voxray/naadf/chunk_cells.hpp"
-#include "voxray/naadf/field_upkeep.hpp"
+#include "voxray/naadf/chunk_edit.hpp"
 #include "voxray/naadf/naadf.hpp"
 
 namespace voxray {
-
-namespace naadf_detail {
-
-inline constexpr int chunk_edge = 1 << VX_NA_CHUNK_BITS;
-
-// Solid voxels of a chunk: the high bit of each byte of (b & 0x7F) + 0x7F | b is set
-// iff b != 0, so a 64-bit word counts 8 voxels at once.
-inline std::int64_t solid_voxels(const voxel_model::chunk& c) {
-    constexpr std::uint64_t low7 = 0x7F7F7F7F7F7F7F7Full;
-    std::int64_t n = 0;
-    for (std::size_t i = 0; i < c.voxels.size(); i += 8) {
-        std::uint64_t w;
-        std::memcpy(&w, c.voxels.data() + i, 8);
-        n += std::popcount((((w & low7) + low7) | w) & ~low7);
-    }
-    return n;
-}
-
-// Bit b set: block b (the layout's block index) of the two chunks differs.
-inline std::uint64_t changed_blocks(const voxel_model::chunk& a, const voxel_model::chunk& b) {
-    std::uint64_t mask = 0;
-    for (int row = 0; row < 256; ++row) {  // rows of 16 voxels: x blocks 0..3 of (y, z)
-        std::uint32_t x[4], y[4];
-        std::memcpy(x, a.voxels.data() + row * 16, 16);
-        std::memcpy(y, b.voxels.data() + row * 16, 16);
-        int base = ((row >> 2) & 3) << 2 | (row >> 6) << 4;  // block index of x block 0
-        for (int i = 0; i < 4; ++i)
-            if (x[i] != y[i]) mask |= std::uint64_t(1) << (base | i);
-    }
-    return mask;
-}
-
-inline box3i intersect(const box3i& a, const box3i& b) { return {glm::max(a.min, b.min), glm::min(a.max, b.max)}; }
-
-// What op does to a voxel holding `old`.
-inline std::uint8_t edited_value(edit_op op, std::uint8_t value, std::uint8_t old) {
-    return op == edit_op::fill ? value : op == edit_op::erase ? 0 : (old ? value : 0);
-}
-
-// Region edit on the chunk at world position `origin` (voxels v), inside `world` only.
-template <class Region>
-bool write_region(const Region& region, edit_op op, std::uint8_t value, glm::ivec3 origin, const box3i& world,
-                  voxel_model::chunk& v) {
-    box3i q = intersect(intersect({origin, origin + chunk_edge}, region.bounds()), world);
-    if (q.empty()) return false;
-    bool changed = false;
-    for (int z = q.min.z; z < q.max.z; ++z)
-        for (int y = q.min.y; y < q.max.y; ++y) {
-            auto [a, b] = region.span(y, z, q.min.x, q.max.x);
-            if (a >= b) continue;
-            std::uint8_t* first = v.voxels.data() + voxel_model::local_index({a, y, z});
-            std::uint8_t* last = first + (b - a);
-            if (op == edit_op::paint) {
-                for (std::uint8_t* p = first; p < last; ++p) {
-                    changed |= *p && *p != value;
-                    *p = *p ? value : 0;
-                }
-                continue;
-            }
-            std::uint8_t fill = op == edit_op::fill ? value : 0;  // whole runs: compare, then set
-            changed = changed || std::any_of(first, last, [&](std::uint8_t p) { return p != fill; });
-            std::fill(first, last, fill);
-        }
-    return changed;
-}
-
-}  // namespace naadf_detail
 
 // One chunk between its parallel rebuild and its commit.
 struct naadf::edited_chunk {
@@ -419,136 +353,6 @@ inline void naadf::commit(edited_chunk& c) {
     if (was_empty && !is_empty) touch(slot, chunk_filled);
     if (!was_empty && is_empty) emptied_[slot].set(at);
     voxel_count_ = std::uint64_t(std::int64_t(voxel_count_) + c.delta);
-}
-
-inline void naadf::settle_pages() {
-    bool table_check = false;
-    for (std::uint64_t slot : touched_) {
-        unsigned flags = touched_flag_[slot];
-        touched_flag_[slot] = 0;
-        std::uint32_t* cell = store_.page_cell(slot);
-        if (VX_NA_STATE(*cell) != VX_NA_MIXED) continue;
-        std::uint32_t index = VX_NA_PAYLOAD(*cell);
-        std::uint32_t* array = store_.chunk_array(index);
-        naadf_detail::page_cells regrow;  // the chunks whose fields refine() must grow
-        if (flags & page_was_empty) regrow.set();  // its chunks start with field 0
-        if (flags & chunk_filled)
-            naadf_detail::reset_broken_fields(array, glm::ivec3(16), VX_NA_CHUNK_AADF_BITS, [&](std::size_t i) {
-                store_.mark(array + i, 1);
-                regrow.set(i);
-            });
-        if (auto e = emptied_.find(slot); e != emptied_.end()) regrow |= e->second | naadf_detail::near_emptied(array, e->second);
-        std::uint32_t* end = array + VX_NA_CHUNK_ARRAY_WORDS;
-        bool all_empty = std::all_of(array, end, [](std::uint32_t c) { return VX_NA_STATE(c) == VX_NA_EMPTY; });
-        bool all_same = VX_NA_STATE(array[0]) == VX_NA_UNIFORM && std::all_of(array, end, [&](std::uint32_t c) { return c == array[0]; });
-        if (!all_empty && (flags & page_was_empty)) table_check = true;
-        if (all_empty || all_same) {  // collapse: the page cell says it all
-            *cell = all_empty ? 0u : array[0];
-            store_.mark(cell, 1);
-            store_.free_chunk_array(index);
-            table_stale_ |= all_empty;
-            continue;
-        }
-        if (regrow.any()) mark_stale(slot, regrow);
-    }
-    touched_.clear();
-    emptied_.clear();
-    if (table_check) {
-        std::uint32_t* table = store_.page_cell(0);
-        naadf_detail::reset_broken_fields(table, grid_.pages, VX_NA_PAGE_AADF_BITS, [&](std::size_t i) { store_.mark(table + i, 1); });
-        table_stale_ = true;
-    }
-}
-
-inline naadf_refine_progress naadf::refine(std::size_t budget, unsigned threads) {
-    std::unique_lock lock(locks_.m);
-    // Up to `budget` pages from the back of the list, regrown in parallel (each page's
-    // chunk array is its own), then their changed words marked in order.
-    std::size_t n = std::min(budget, stale_.size());
-    std::vector<stale_page> pages(stale_.end() - std::ptrdiff_t(n), stale_.end());
-    stale_.resize(stale_.size() - n);
-    for (auto& page : pages) stale_at_[page.slot] = 0;
-    std::vector<std::vector<std::uint32_t>> changed(n);
-    std::atomic<std::size_t> next{0};
-    run_build_threads(resolve_build_threads(threads, n), [&](unsigned) {
-        for (std::size_t k; (k = next.fetch_add(1)) < n;) {
-            std::uint32_t cell = *store_.page_cell(pages[k].slot);
-            if (VX_NA_STATE(cell) != VX_NA_MIXED) continue;
-            naadf_detail::regrow_page_fields(store_.chunk_array(VX_NA_PAYLOAD(cell)), pages[k].cells,
-                                             [&](std::size_t i) { changed[k].push_back(std::uint32_t(i)); });
-        }
-    });
-    for (std::size_t k = 0; k < n; ++k) {
-        std::uint32_t* array = store_.chunk_array(VX_NA_PAYLOAD(*store_.page_cell(pages[k].slot)));
-        for (std::uint32_t i : changed[k]) store_.mark(array + i, 1);
-    }
-    if (budget > n && table_stale_) {
-        std::uint32_t* table = store_.page_cell(0);
-        naadf_detail::regrow_fields(table, grid_.pages, 31, VX_NA_PAGE_AADF_BITS, [&](std::size_t i) { store_.mark(table + i, 1); });
-        table_stale_ = false;
-    }
-    return {stale_.size(), table_stale_};
-}
-
-inline void naadf::make_room(const regions::box64& need) {
-    const box3i& world = grid_.bounds;
-    if (need.inside(world) || outside_ == outside_edits::clip) return;
-    if (outside_ == outside_edits::fail) world_growth::refuse(world, need, "naadf");
-    regrid(world.empty() ? need.saturated() : world_growth::grown(world, need, 1 << VX_NA_PAGE_BITS, "naadf"));
-}
-
-// The world grows to `world`: the same page table when it still covers it (only the
-// header moves), else a bigger table with the old pages copied to their new slots (a
-// re-layout: the blob is sent whole once).
-inline void naadf::regrid(const box3i& world) {
-    naadf_detail::grid_placement next(world);
-    if (next.origin == grid_.origin && next.pages == grid_.pages) {
-        grid_ = next;
-        next.write_header(store_.words());
-        store_.mark(store_.words() + VX_NA_HEADER_ORIGIN, VX_NA_HEADER_PAGE_TABLE - VX_NA_HEADER_ORIGIN);
-        return;
-    }
-    std::vector<std::uint32_t> old(store_.page_cell(0), store_.page_cell(0) + grid_.page_count);
-    glm::ivec3 move = (grid_.origin - next.origin) >> VX_NA_PAGE_BITS;
-    store_.resize_table(next.page_count);
-    std::uint32_t* table = store_.page_cell(0);
-    std::fill_n(table, next.page_count, 0u);
-    auto new_slot = [&](std::uint64_t slot) {
-        std::uint64_t px = grid_.pages.x, py = grid_.pages.y;
-        glm::u64vec3 p(slot % px + move.x, slot / px % py + move.y, slot / px / py + move.z);
-        return p.x + std::uint64_t(next.pages.x) * (p.y + std::uint64_t(next.pages.y) * p.z);
-    };
-    // Old fields stay valid (the new pages are empty) but are capped at the old table's
-    // edges: refine() grows them across the new space.
-    for (std::uint64_t slot = 0; slot < old.size(); ++slot) table[new_slot(slot)] = old[slot];
-    for (auto& page : stale_) page.slot = new_slot(page.slot);
-    stale_at_.assign(next.page_count, 0);
-    for (std::size_t i = 0; i < stale_.size(); ++i) stale_at_[stale_[i].slot] = std::uint32_t(i + 1);
-    touched_flag_.assign(next.page_count, 0);
-    grid_ = next;
-    next.write_header(store_.words());
-    table_stale_ = true;
-}
-
-inline naadf_stats naadf::stats() const {
-    std::shared_lock lock(locks_.m);
-    naadf_stats s;
-    s.pages = grid_.page_count;
-    s.mixed_pages = store_.chunk_arrays_used();
-    s.mixed_chunks = store_.block_arrays_used();
-    s.groups = groups_.live();
-    for (std::uint64_t slot = 0; slot < grid_.page_count; ++slot) {
-        std::uint32_t page = *store_.page_cell(slot);
-        if (VX_NA_STATE(page) != VX_NA_MIXED) continue;
-        const std::uint32_t* chunks = store_.chunk_array(VX_NA_PAYLOAD(page));
-        for (int c = 0; c < VX_NA_CHUNK_ARRAY_WORDS; ++c) {
-            s.uniform_chunks += VX_NA_STATE(chunks[c]) == VX_NA_UNIFORM;
-            if (VX_NA_STATE(chunks[c]) != VX_NA_MIXED) continue;
-            const std::uint32_t* blocks = store_.block_array(VX_NA_PAYLOAD(chunks[c]));
-            for (int b = 0; b < 64; ++b) s.mixed_blocks += VX_NA_STATE(blocks[b]) == VX_NA_MIXED;
-        }
-    }
-    return s;
 }
 
 }  // namespace voxray
