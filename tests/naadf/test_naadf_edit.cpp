@@ -281,5 +281,37 @@ TEST(naadf_edit, erasing_everything_frees_everything) {
     for (auto& h : hits) ASSERT_EQ(h.status, VX_STATUS_MISS);
 }
 
+// An edit that needs more blob than the limit allows fails with an error naming it, and
+// leaves a consistent structure: the chunks committed before the failure stay, every
+// cell decodes to what get() says, every cuboid is empty, the count is right, and it
+// keeps working.
+TEST(naadf_edit, an_edit_past_the_blob_limit_fails_and_leaves_a_consistent_structure) {
+    voxel_model model = random_sparse({{0, 0, 0}, {200, 200, 200}}, 20, 40);
+    naadf s(model, {.headroom = 0, .max_blob_bytes = naadf(model).bytes() + 200'000});
+    const box3i world = s.bounds();
+    // Checkered blocks everywhere: a new block array and groups for every chunk.
+    std::vector<naadf::edit> edits;
+    for (int z = world.min.z; z + 4 < world.max.z; z += 8)
+        edits.push_back({regions::box{{{world.min.x, world.min.y, z}, {world.max.x, world.max.y, z + 3}}}, edit_op::fill, 5});
+    try {
+        s.apply_batch(edits, 2);
+        FAIL() << "the edit fit";
+    } catch (const error& e) {
+        EXPECT_NE(std::string(e.what()).find("max_blob_bytes"), std::string::npos) << e.what();
+    }
+    EXPECT_LE(s.bytes(), naadf(model).bytes() + 200'000);
+    voxel_model seen;
+    for (int z = world.min.z; z < world.max.z; ++z)
+        for (int y = world.min.y; y < world.max.y; ++y)
+            for (int x = world.min.x; x < world.max.x; ++x)
+                if (auto v = s.get({x, y, z})) seen.set({x, y, z}, v);
+    EXPECT_GT(seen.voxel_count(), model.voxel_count());  // part of the edit is in
+    EXPECT_EQ(s.voxel_count(), seen.voxel_count());
+    expect_cells_match(s.blob(), seen, world, "after the failed edit");
+    s.erase_box(world, 2);  // and it still edits, freeing everything
+    EXPECT_EQ(s.voxel_count(), 0u);
+    EXPECT_EQ(s.stats().groups, 0u);
+}
+
 }  // namespace
 }  // namespace voxray::test

@@ -34,6 +34,10 @@ struct naadf_options {
     // that the first edits do not re-lay the blob out (which resends it whole).
     double headroom = 0.25;
     outside_edits outside = outside_edits::grow;  // fills outside bounds(): edit/world_growth.hpp
+    // The largest blob edits may grow this structure to (at most, and by default, the
+    // 8 GiB of 32-bit word offsets). An edit that needs more fails with voxray::error and
+    // leaves the structure consistent: whole chunks applied, every field correct.
+    std::uint64_t max_blob_bytes = (max_blob_words - 1) * 4;
 };
 
 // What a build made, for reports and tests.

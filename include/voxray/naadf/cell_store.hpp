@@ -22,6 +22,9 @@ namespace voxray::naadf_detail {
 
 class cell_store {
 public:
+    // Growth past this many bytes fails (checked before anything changes).
+    void limit(std::uint64_t max_bytes) { max_bytes_ = max_bytes; }
+
     // Takes a built blob (areas packed, header counts = arrays used) and gives each area
     // `headroom` (a fraction) of spare capacity; `used_*` are the arrays and groups in use.
     void adopt(blob_words words, double headroom) {
@@ -131,6 +134,9 @@ private:
         std::uint64_t voxels = blocks + std::uint64_t(block_cap) * VX_NA_BLOCK_ARRAY_WORDS;
         std::uint64_t total = voxels + std::uint64_t(group_cap) * VX_NA_GROUP_WORDS;
         check_blob_size("naadf", total);
+        if (total * 4 > max_bytes_)
+            fail("naadf: the blob would grow to ", total * 4, " bytes, above this structure's limit of ", max_bytes_,
+                 " bytes (naadf_options::max_blob_bytes)");
         blob_words w(total, 0u);
         std::copy_n(words_.begin(), VX_NA_HEADER_WORDS, w.begin());
         auto move_area = [&](std::uint64_t from, std::uint64_t old_words, std::uint64_t to, std::uint64_t new_words) {
@@ -160,6 +166,7 @@ private:
     }
 
     blob_words words_;
+    std::uint64_t max_bytes_ = (max_blob_words - 1) * 4;
     std::uint32_t table_ = 0, chunks_ = 0, blocks_ = 0, voxels_ = 0;
     std::uint32_t chunk_cap_ = 0, block_cap_ = 0, group_cap_ = 0;
     std::uint32_t chunk_used_ = 0, block_used_ = 0;  // high-water marks

@@ -178,6 +178,7 @@ private:
     void edit_chunks(const std::vector<glm::ivec3>& chunks, unsigned threads, ChunkEdit&& chunk_edit);
     void rebuild(edited_chunk& c, const voxel_model::chunk& v, std::uint64_t blocks, naadf_detail::field_cache& cache) const;
     void commit(edited_chunk& c);
+    void finish_batch();
     void open_page(std::uint64_t slot);
     void touch(std::uint64_t slot, unsigned flags);
     void settle_pages();

@@ -44,6 +44,7 @@ inline naadf::naadf(const voxel_model& model, naadf_options options) : outside_(
     auto built = naadf_detail::build(model, options);
     grid_ = naadf_detail::grid_placement(built.bounds);
     store_.adopt(std::move(built.words), options.headroom);
+    store_.limit(options.max_blob_bytes);
     groups_ = std::move(built.groups);
     voxel_count_ = model.voxel_count();
     palette_ = model.palette();
@@ -249,14 +250,26 @@ void naadf::edit_chunks(const std::vector<glm::ivec3>& chunks, unsigned threads,
                 if (!c.empty) rebuild(c, v, blocks, cache);
             }
         });
-        for (std::size_t k = 0; k < n; ++k)
-            if (results[k].changed) commit(results[k]);
-        // Old groups are released only now: a group a rebuild found in the table (and
-        // so did not give fields) must still be there when its chunk is committed.
-        for (std::uint32_t g : released_) groups_.release(g);
-        released_.clear();
+        try {
+            for (std::size_t k = 0; k < n; ++k)
+                if (results[k].changed) commit(results[k]);
+        } catch (...) {
+            // Growth past the limit: the chunks committed so far stay, and their pages
+            // are settled, so the structure is consistent and every field correct.
+            finish_batch();
+            settle_pages();
+            throw;
+        }
+        finish_batch();
     }
     settle_pages();
+}
+
+// Old groups are released only once a batch is committed: a group a rebuild found in the
+// table (and so did not give fields) must still be there when its chunk is committed.
+inline void naadf::finish_batch() {
+    for (std::uint32_t g : released_) groups_.release(g);
+    released_.clear();
 }
 
 inline void naadf::rebuild(edited_chunk& c, const voxel_model::chunk& v, std::uint64_t blocks,
@@ -310,14 +323,15 @@ inline void naadf::commit(edited_chunk& c) {
     if (VX_NA_STATE(old) == VX_NA_MIXED) {
         const std::uint32_t* blocks = store_.block_array(VX_NA_PAYLOAD(old));
         std::copy(blocks, blocks + 64, old_blocks.begin());
-        for (int b = 0; b < 64; ++b)
-            if (VX_NA_STATE(blocks[b]) == VX_NA_MIXED && !(kept >> b & 1u)) released_.push_back(VX_NA_PAYLOAD(blocks[b]));
     }
     std::uint32_t cell = 0;  // empty; its field is reset, refine() grows it
     if (!c.empty && VX_NA_STATE(c.built.cell) == VX_NA_UNIFORM) {
         cell = c.built.cell;
     } else if (!c.empty) {
+        // Everything that may grow the blob (and so fail) comes before any reference
+        // count changes.
         store_.reserve_groups(groups_.size() + c.built.groups.size());
+        std::uint32_t index = VX_NA_STATE(old) == VX_NA_MIXED ? VX_NA_PAYLOAD(old) : store_.alloc_block_array();
         std::array<std::uint32_t, 64> blocks = c.built.blocks;
         for (int i = 0; i < 64; ++i) {
             auto& b = blocks[i];
@@ -335,7 +349,6 @@ inline void naadf::commit(edited_chunk& c) {
             }
             b = VX_NA_MIXED_CELL(r.index);
         }
-        std::uint32_t index = VX_NA_STATE(old) == VX_NA_MIXED ? VX_NA_PAYLOAD(old) : store_.alloc_block_array();
         std::uint32_t* words = store_.block_array(index);
         if (!std::equal(blocks.begin(), blocks.end(), words)) {
             std::copy(blocks.begin(), blocks.end(), words);
@@ -343,6 +356,8 @@ inline void naadf::commit(edited_chunk& c) {
         }
         cell = VX_NA_MIXED_CELL(index);
     }
+    for (int b = 0; b < 64; ++b)
+        if (VX_NA_STATE(old_blocks[b]) == VX_NA_MIXED && !(kept >> b & 1u)) released_.push_back(VX_NA_PAYLOAD(old_blocks[b]));
     if (VX_NA_STATE(old) == VX_NA_MIXED && VX_NA_STATE(cell) != VX_NA_MIXED) store_.free_block_array(VX_NA_PAYLOAD(old));
     std::uint32_t* word = store_.chunk_array(array) + at;  // after any re-layout above
     if (*word != cell) {
