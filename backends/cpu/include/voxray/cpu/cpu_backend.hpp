@@ -100,6 +100,14 @@ public:
         else trace_mode<VX_MODE_CLOSEST>(rays, hits);
     }
 
+    // One ray with the scalar kernel on the calling thread: no pool, no lane set-up
+    // (tracer::closest_hit(const ray&)). Same hit as trace(), bit for bit.
+    hit trace_one(const ray& r, std::uint32_t mode) const {
+        using K = kernels::scalar::kernel_lanes<Kernel>;
+        if (mode == VX_MODE_ANY) return from_lane(K::template trace<VX_MODE_ANY>(blob_.data(), to_lane(r)));
+        return from_lane(K::template trace<VX_MODE_CLOSEST>(blob_.data(), to_lane(r)));
+    }
+
     unsigned threads() const { return pool_->size(); }
     // Rays traced at once per lane group: 1 for cpu-scalar, else 8 or 16.
     unsigned simd_width() const { return width_; }
