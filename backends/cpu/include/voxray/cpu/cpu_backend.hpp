@@ -32,7 +32,7 @@ struct cpu_options {
     // Share these workers instead of starting a pool of its own:
     //   auto pool = std::make_shared<voxray::cpu_thread_pool>(8);
     //   voxray::tracer<voxray::cpu, voxray::brickmap<>> a(map, {.pool = pool}), b(grid, {.pool = pool});
-    std::shared_ptr<cpu_thread_pool> pool;
+    std::shared_ptr<cpu_thread_pool> pool = nullptr;  // (an initializer: no -Wmissing-field-initializers in {.threads = 1})
     // Trace the structure's own blob in place instead of a copy (no upload cost, no second
     // copy in memory). The caller promises that the structure is neither edited, moved nor
     // destroyed while this tracer traces; update() after an edit then only re-points (the
