@@ -13,15 +13,18 @@ endif()
 add_library(voxray_opencl INTERFACE)
 add_library(voxray::opencl ALIAS voxray_opencl)
 set_target_properties(voxray_opencl PROPERTIES EXPORT_NAME opencl)
-target_include_directories(voxray_opencl INTERFACE
+target_include_directories(voxray_opencl ${VOXRAY_SYSTEM} INTERFACE
     $<BUILD_INTERFACE:${CMAKE_CURRENT_LIST_DIR}/include>
     $<BUILD_INTERFACE:${PROJECT_BINARY_DIR}/generated>
     $<INSTALL_INTERFACE:${CMAKE_INSTALL_INCLUDEDIR}>)
 target_link_libraries(voxray_opencl INTERFACE voxray::voxray OpenCL::OpenCL)
 # The host code uses the 1.2 API only (clCreateCommandQueue, no SVM): say so, which
 # also silences the headers' "defaulting to 3.0" message and 2.0 deprecations.
-target_compile_definitions(voxray_opencl INTERFACE CL_TARGET_OPENCL_VERSION=120)
-install(DIRECTORY ${CMAKE_CURRENT_LIST_DIR}/include/ DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
+# VOXRAY_LINKED_OPENCL: voxray/opencl.hpp refuses to compile without it (see vulkan.hpp).
+target_compile_definitions(voxray_opencl INTERFACE CL_TARGET_OPENCL_VERSION=120 VOXRAY_LINKED_OPENCL=1)
+if(VOXRAY_INSTALL)
+    install(DIRECTORY ${CMAKE_CURRENT_LIST_DIR}/include/ DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
+endif()
 set_property(GLOBAL PROPERTY VOXRAY_OPENCL_HEADERS "")
 
 # One embedded program: the flattened source `cl` as voxray/generated/opencl_<name>.hpp.
@@ -68,8 +71,10 @@ inline constexpr program_source commit_program{\"commit\", voxray_opencl_commit}
     add_custom_target(voxray_opencl_programs ALL DEPENDS ${headers})
     # Interface libraries pass their dependencies on to whoever links them.
     add_dependencies(voxray_opencl voxray_opencl_programs)
-    install(FILES ${headers} ${VOXRAY_GENERATED}/voxray/generated/opencl_programs.hpp
-            DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/voxray/generated)
+    if(VOXRAY_INSTALL)
+        install(FILES ${headers} ${VOXRAY_GENERATED}/voxray/generated/opencl_programs.hpp
+                DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/voxray/generated)
+    endif()
 endfunction()
 
 voxray_backend_added(opencl voxray_opencl)

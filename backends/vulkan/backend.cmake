@@ -42,7 +42,8 @@ endfunction()
 function(voxray_vulkan_add_program name)
     set(dir ${CMAKE_CURRENT_FUNCTION_LIST_DIR})
     set(comp ${VOXRAY_GENERATED}/vulkan/${name}.comp)
-    voxray_flatten(OUTPUT ${comp} LINE_MARKERS FILES ${dir}/shaders/preamble.glsl ${ARGN} ${dir}/shaders/entry.glsl)
+    voxray_flatten(OUTPUT ${comp} LINE_MARKERS FILES ${dir}/shaders/preamble.glsl ${dir}/shaders/dialect.glsl ${ARGN}
+        ${dir}/shaders/entry.glsl)
     voxray_vulkan_compile(${comp} ${name}_closest "-DVX_TRACE=vx_${name}_trace;-DVX_MODE=VX_MODE_CLOSEST")
     voxray_vulkan_compile(${comp} ${name}_any "-DVX_TRACE=vx_${name}_trace;-DVX_MODE=VX_MODE_ANY")
 endfunction()
@@ -51,7 +52,7 @@ endfunction()
 function(voxray_vulkan_finish)
     set(dir ${CMAKE_CURRENT_FUNCTION_LIST_DIR})
     set(comp ${VOXRAY_GENERATED}/vulkan/commit.comp)
-    voxray_flatten(OUTPUT ${comp} LINE_MARKERS FILES ${dir}/shaders/preamble.glsl
+    voxray_flatten(OUTPUT ${comp} LINE_MARKERS FILES ${dir}/shaders/preamble.glsl ${dir}/shaders/dialect.glsl
         ${PROJECT_SOURCE_DIR}/include/voxray/kernels/prelude.h ${PROJECT_SOURCE_DIR}/include/voxray/sync/commit.h
         ${dir}/shaders/commit.glsl)
     voxray_vulkan_compile(${comp} commit "")
@@ -77,18 +78,25 @@ inline constexpr spirv_modules registered_modules[] = {
     get_property(headers GLOBAL PROPERTY VOXRAY_VULKAN_HEADERS)
     add_custom_target(voxray_vulkan_shaders ALL DEPENDS ${headers})
     add_dependencies(voxray_vulkan voxray_vulkan_shaders)
-    install(FILES ${headers} ${VOXRAY_GENERATED}/voxray/generated/vulkan_modules.hpp
-            DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/voxray/generated)
+    if(VOXRAY_INSTALL)
+        install(FILES ${headers} ${VOXRAY_GENERATED}/voxray/generated/vulkan_modules.hpp
+                DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/voxray/generated)
+    endif()
 endfunction()
 
 add_library(voxray_vulkan INTERFACE)
 add_library(voxray::vulkan ALIAS voxray_vulkan)
 set_target_properties(voxray_vulkan PROPERTIES EXPORT_NAME vulkan)
-target_include_directories(voxray_vulkan INTERFACE
+target_include_directories(voxray_vulkan ${VOXRAY_SYSTEM} INTERFACE
     $<BUILD_INTERFACE:${CMAKE_CURRENT_LIST_DIR}/include>
     $<BUILD_INTERFACE:${VOXRAY_GENERATED}>
     $<INSTALL_INTERFACE:${CMAKE_INSTALL_INCLUDEDIR}>)
 target_link_libraries(voxray_vulkan INTERFACE voxray::voxray Vulkan::Vulkan)
+# voxray/vulkan.hpp refuses to compile without it: a program that includes the header but
+# does not link voxray::vulkan fails with one clear message, not dozens of undefined symbols.
+target_compile_definitions(voxray_vulkan INTERFACE VOXRAY_LINKED_VULKAN=1)
 
-install(DIRECTORY ${CMAKE_CURRENT_LIST_DIR}/include/ DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
+if(VOXRAY_INSTALL)
+    install(DIRECTORY ${CMAKE_CURRENT_LIST_DIR}/include/ DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
+endif()
 voxray_backend_added(vulkan voxray_vulkan)

@@ -17,7 +17,6 @@
 #include "bench_header.hpp"
 #include "bench_options.hpp"
 #include "cli.hpp"
-#include "commands.hpp"
 #include "engines.hpp"
 #include "voxray/check/compare.hpp"
 #include "voxray/check/ray_sets.hpp"
@@ -56,8 +55,8 @@ std::vector<ray_set> make_ray_sets(const bench_options& o, const voxel_model& mo
     for (auto& name : split_names(o.ray_sets)) {
         ray_set s{name, {}, {}, name == "shadow", o.width, o.height};
         if (name == "primary") s.rays = primary;
-        if (name == "secondary") s.rays = secondary_rays(primary, primary_hits, 7);
-        if (name == "shadow") s.rays = shadow_rays(primary, primary_hits, light_direction(model.up_axis));
+        if (name == "secondary") s.rays = diffuse_rays(primary, primary_hits, 7);
+        if (name == "shadow") s.rays = shadow_rays(primary, primary_hits, sun_direction(model.up_axis));
         sets.push_back(std::move(s));
     }
     if (!o.ray_file.empty()) sets.push_back({"file:" + std::filesystem::path(o.ray_file).stem().string(), io::read_rays(o.ray_file), {}, false, 0, 0});

@@ -5,22 +5,12 @@
 #include <cstdio>
 
 #include "cli.hpp"
-#include "commands.hpp"
 #include "engines.hpp"
 #include "png_writer.hpp"
 #include "scene.hpp"
-#include "voxray/check/ray_sets.hpp"
+#include "voxray/rays.hpp"
 
 namespace voxray::tool {
-
-// The light comes from above and to the side, whatever the scene's up axis.
-glm::vec3 light_direction(int up_axis) {
-    glm::vec3 l(0.0f);
-    l[up_axis] = 0.8f;
-    l[(up_axis + 1) % 3] = 0.45f;
-    l[(up_axis + 2) % 3] = 0.35f;
-    return glm::normalize(l);
-}
 
 namespace {
 
@@ -36,21 +26,14 @@ struct render_options {
 constexpr std::uint64_t bytes_per_pixel = 2 * sizeof(ray) + 2 * sizeof(hit) + 3;
 
 camera choose_camera(const render_options& o, const voxel_model& model) {
-    camera cam = auto_camera(model.bounds(), model.up_axis, o.view);
-    if (o.eye.empty()) return cam;
+    if (o.eye.empty()) return auto_camera(model.bounds(), model.up_axis, o.view);
     box3i b = model.bounds();
-    cam.position = {o.eye[0], o.eye[1], o.eye[2]};
-    cam.target = o.target.empty() ? (glm::vec3(b.min) + glm::vec3(b.max)) * 0.5f : glm::vec3(o.target[0], o.target[1], o.target[2]);
-    cam.up = glm::vec3(0.0f);
-    cam.up[model.up_axis] = 1.0f;
-    cam.fov_y_degrees = o.fov;
-    glm::vec3 forward = cam.target - cam.position;
-    if (!(glm::length(forward) > 0.0f)) fail("--eye and --target are the same point");
-    if (glm::length(glm::cross(glm::normalize(forward), cam.up)) < 1e-6f) {
-        cam.up = glm::vec3(0.0f);
-        cam.up[(model.up_axis + 1) % 3] = 1.0f;  // looking straight up or down
-    }
-    return cam;
+    glm::vec3 eye(o.eye[0], o.eye[1], o.eye[2]);
+    glm::vec3 target = o.target.empty() ? (glm::vec3(b.min) + glm::vec3(b.max)) * 0.5f : glm::vec3(o.target[0], o.target[1], o.target[2]);
+    if (!(glm::length(target - eye) > 0.0f)) fail("--eye and --target are the same point");
+    glm::vec3 up(0.0f);
+    up[model.up_axis] = 1.0f;
+    return look_at(eye, target, o.fov, up);
 }
 
 int render(const render_options& o) {
@@ -67,25 +50,16 @@ int render(const render_options& o) {
     auto rays = primary_rays(choose_camera(o, model), o.width, o.height);
     std::vector<hit> hits(rays.size()), shadow(rays.size());
     engine->closest_hit(rays, hits);
-    glm::vec3 light = light_direction(model.up_axis);
-    auto shadow_set = shadow_rays(rays, hits, light);
+    glm::vec3 sun = sun_direction(model.up_axis);
+    auto shadow_set = shadow_rays(rays, hits, sun);
     engine->any_hit(shadow_set, shadow);
 
     std::vector<std::uint8_t> rgb(rays.size() * 3);
     for (std::size_t i = 0; i < rays.size(); ++i) {
-        glm::vec3 c;
-        if (hits[i].is_hit()) {
-            auto col = model.palette()[std::uint8_t(hits[i].material)].colour;
-            glm::vec3 albedo = glm::vec3(col.r, col.g, col.b) / 255.0f;
-            float lambert = std::max(0.0f, glm::dot(face_normal(hits[i].normal), light));
-            float lit = shadow[i].is_hit() ? 0.0f : lambert;
-            c = albedo * (0.3f + 0.7f * lit);
-        } else {
-            float up = std::clamp(rays[i].direction[model.up_axis] * 0.5f + 0.5f, 0.0f, 1.0f);
-            c = glm::mix(glm::vec3(0.85f, 0.88f, 0.92f), glm::vec3(0.45f, 0.62f, 0.86f), up);
-        }
-        for (int k = 0; k < 3; ++k)
-            rgb[i * 3 + k] = std::uint8_t(std::clamp(std::pow(c[k], 1.0f / 2.2f), 0.0f, 1.0f) * 255.0f + 0.5f);
+        glm::vec3 c = hits[i].is_hit() ? shade(model.palette(), hits[i], sun, shadow[i].is_hit())
+                                       : sky(rays[i].direction, model.up_axis);
+        auto px = to_srgb8(c);
+        std::copy(px.begin(), px.end(), rgb.begin() + i * 3);
     }
     write_png(o.out, o.width, o.height, rgb);
     std::printf("wrote %s (%d x %d, %s on %s)\n", o.out.c_str(), o.width, o.height, structure->name().c_str(), o.backend.c_str());

@@ -27,10 +27,12 @@
 // generation it holds: each of several tracers gets exactly what it is missing, and
 // the first update after construction sends only what changed since.
 #pragma once
+#include <algorithm>
 #include <concepts>
 #include <cstdint>
 #include <span>
 #include <string_view>
+#include <vector>
 
 #include "voxray/core/error.hpp"
 #include "voxray/core/hit.hpp"
@@ -145,9 +147,41 @@ public:
     // Any solid voxel within [tmin, tmax] (shadow rays): status says whether one exists.
     void any_hit(std::span<const ray> rays, std::span<hit> hits) { trace(rays, hits, VX_MODE_ANY); }
 
+    // One ray (Embree's rtcIntersect1). The CPU backends run it on the calling thread with
+    // the scalar kernel, no pool involved; the others trace a batch of one.
+    hit closest_hit(const ray& r) { return trace_one(r, VX_MODE_CLOSEST); }
+
+    // Whether anything solid lies along the ray within [tmin, tmax] (rtcOccluded1).
+    bool occluded(const ray& r) { return trace_one(r, VX_MODE_ANY).is_hit(); }
+
+    // One flag per ray, 1 where something solid lies within [tmin, tmax], else 0
+    // (rtcOccluded for a batch). Traces any-hit in chunks, so besides the flags it needs
+    // only a small scratch of hits (GPU backends still bring whole hits back from the device).
+    void occluded(std::span<const ray> rays, std::span<std::uint8_t> flags) {
+        if (flags.size() < rays.size())
+            fail("tracer: ", rays.size(), " rays but room for only ", flags.size(), " occlusion flags");
+        constexpr std::size_t chunk = 4096;
+        std::vector<hit> scratch(std::min(rays.size(), chunk));  // per call: concurrent calls stay safe
+        for (std::size_t begin = 0; begin < rays.size(); begin += chunk) {
+            auto part = rays.subspan(begin, std::min(chunk, rays.size() - begin));
+            trace(part, std::span<hit>(scratch).first(part.size()), VX_MODE_ANY);
+            for (std::size_t i = 0; i < part.size(); ++i) flags[begin + i] = scratch[i].is_hit() ? 1 : 0;
+        }
+    }
+
     auto& engine() { return engine_; }
 
 private:
+    hit trace_one(const ray& r, std::uint32_t mode) {
+        if constexpr (requires { engine_.trace_one(r, mode); }) {
+            return engine_.trace_one(r, mode);
+        } else {
+            hit h;
+            engine_.trace({&r, 1}, {&h, 1}, mode);
+            return h;
+        }
+    }
+
     void upload(std::span<const std::uint32_t> blob) {
         engine_.upload(blob);
         uploaded_words_ = blob.size();

@@ -14,7 +14,7 @@
 # The shared dialect every kernel builds on, in dependency order.
 set(VOXRAY_KERNEL_COMMON kernels/prelude.h kernels/ray.h kernels/dda.h kernels/stack.h)
 set(VOXRAY_GENERATED ${PROJECT_BINARY_DIR}/generated)
-file(MAKE_DIRECTORY ${VOXRAY_GENERATED}/voxray/generated ${VOXRAY_GENERATED}/opencl ${VOXRAY_GENERATED}/vulkan)
+file(MAKE_DIRECTORY ${VOXRAY_GENERATED}/voxray/generated ${VOXRAY_GENERATED}/voxray/shaders ${VOXRAY_GENERATED}/opencl ${VOXRAY_GENERATED}/vulkan)
 find_program(VOXRAY_CLANG NAMES clang clang-16 clang-15 clang-14 DOC "clang, to check OpenCL C kernels at build time")
 
 # voxray_flatten(OUTPUT <file> FILES <file>... [CPP_STRING <name>] [LINE_MARKERS])
@@ -82,6 +82,16 @@ function(voxray_add_structure name)
             COMMENT "Checking the ${name} kernel as OpenCL C 1.2 (clang)" VERBATIM)
         list(APPEND outputs ${stamp})
     endif()
+    # The includable sources for users' own shaders and kernels (installed as
+    # voxray/shaders/<name>.glsl and .cl): the same kernel files after the dialect's head,
+    # without voxray's entry points and without #line markers.
+    set(shaders ${VOXRAY_GENERATED}/voxray/shaders)
+    set(backends_dir ${PROJECT_SOURCE_DIR}/backends)
+    voxray_flatten(OUTPUT ${shaders}/${name}.glsl FILES ${backends_dir}/vulkan/shaders/include_head.glsl
+        ${backends_dir}/vulkan/shaders/dialect.glsl ${kernel_files})
+    voxray_flatten(OUTPUT ${shaders}/${name}.cl FILES ${backends_dir}/opencl/kernels/include_head.cl
+        ${cl_dir}/preamble.cl ${kernel_files})
+    list(APPEND outputs ${shaders}/${name}.glsl ${shaders}/${name}.cl)
     if(TARGET voxray_opencl)
         voxray_opencl_add_program(${name} ${cl})
     endif()

@@ -1,19 +1,117 @@
-# cmake -DWORK_DIR=... -DCONSUMER_DIR=... [-DBUILD_DIR=...] [-DCONFIGURE_ARGS=a|b] -P consume.cmake
-# Configures, builds and runs a consumer project. With BUILD_DIR, voxray is first installed
-# from that build into WORK_DIR/prefix and the consumer finds it there (find_package).
+# cmake -DWORK_DIR=... -DCONSUMER_DIR=... [options] -P consume.cmake
+# Configures, builds and runs a consumer project (tests/install/CMakeLists.txt lists the
+# cases). Options:
+#   BUILD_DIR               install voxray from that build into WORK_DIR/prefix first and
+#                           let the consumer find it there (find_package)
+#   CONFIGURE_ARGS=a|b      more arguments for the consumer's configure step
+#   EXPECT_CONFIGURE_ERROR  a regex: configuring must fail with a message matching it
+#   RUN=a|b                 the consumer's programs to run (default: consumer, and
+#                           cpu_opt_out where it was built)
+#   FAIL_TARGET, FAIL_REGEX building FAIL_TARGET must fail with an error matching FAIL_REGEX
+#   CHECK_TOOL              the installed voxray tool must run, and the installed shader
+#                           sources must be there and compile in a user's shader
+#   INSTALL_CONSUMER        install the consumer: its program, and no file of voxray's
+cmake_policy(VERSION 3.21)
 file(REMOVE_RECURSE ${WORK_DIR})
 function(run)
     execute_process(COMMAND ${ARGN} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
     if(NOT rc EQUAL 0)
         message(FATAL_ERROR "failed (${rc}): ${ARGN}\n${out}\n${err}")
     endif()
+    message(STATUS "${out}")
 endfunction()
+# Runs a command that must fail with output matching `regex`.
+function(run_failing regex)
+    execute_process(COMMAND ${ARGN} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+    if(rc EQUAL 0)
+        message(FATAL_ERROR "succeeded but should have failed: ${ARGN}\n${out}\n${err}")
+    endif()
+    if(NOT "${out}${err}" MATCHES "${regex}")
+        message(FATAL_ERROR "failed, but without a message matching '${regex}': ${ARGN}\n${out}\n${err}")
+    endif()
+    message(STATUS "failed as expected (matching '${regex}')")
+endfunction()
+
 string(REPLACE "|" ";" configure_args "${CONFIGURE_ARGS}")
+set(prefix ${WORK_DIR}/prefix)
 if(BUILD_DIR)
-    run(${CMAKE_COMMAND} --install ${BUILD_DIR} --prefix ${WORK_DIR}/prefix)
-    list(APPEND configure_args -DCMAKE_PREFIX_PATH=${WORK_DIR}/prefix)
+    run(${CMAKE_COMMAND} --install ${BUILD_DIR} --prefix ${prefix})
+    list(APPEND configure_args -DCMAKE_PREFIX_PATH=${prefix})
 endif()
-run(${CMAKE_COMMAND} -S ${CONSUMER_DIR} -B ${WORK_DIR}/build -DCMAKE_BUILD_TYPE=Release ${configure_args})
-run(${CMAKE_COMMAND} --build ${WORK_DIR}/build -j2 --target consumer)
-run(${WORK_DIR}/build/consumer)
+set(configure ${CMAKE_COMMAND} -S ${CONSUMER_DIR} -B ${WORK_DIR}/build -DCMAKE_BUILD_TYPE=Release ${configure_args})
+if(EXPECT_CONFIGURE_ERROR)
+    run_failing("${EXPECT_CONFIGURE_ERROR}" ${configure})
+    return()
+endif()
+run(${configure})
+run(${CMAKE_COMMAND} --build ${WORK_DIR}/build -j2)
+
+if(NOT RUN)
+    set(RUN consumer)
+    if(EXISTS ${WORK_DIR}/build/cpu_opt_out)
+        list(APPEND RUN cpu_opt_out)
+    endif()
+endif()
+string(REPLACE "|" ";" programs "${RUN}")
+foreach(program ${programs})
+    run(${WORK_DIR}/build/${program})
+endforeach()
+
+# The opt-out target's compile command has neither of voxray::cpu's flags; the consumer's
+# (default) has both.
+function(compile_command source out)
+    file(READ ${WORK_DIR}/build/compile_commands.json commands)
+    string(JSON n LENGTH "${commands}")
+    math(EXPR last "${n} - 1")
+    foreach(i RANGE ${last})
+        string(JSON file GET "${commands}" ${i} file)
+        if(file MATCHES "${source}$")
+            string(JSON command GET "${commands}" ${i} command)
+            set(${out} "${command}" PARENT_SCOPE)
+            return()
+        endif()
+    endforeach()
+    message(FATAL_ERROR "no compile command for ${source}")
+endfunction()
+if(cpu_opt_out IN_LIST programs)
+    compile_command(cpu_opt_out.cpp command)
+    if(command MATCHES "-march|-ffp-contract")
+        message(FATAL_ERROR "cpu_opt_out was compiled with voxray::cpu's flags: ${command}")
+    endif()
+    compile_command(consumer/main.cpp command)
+    if(NOT command MATCHES "-march=" OR NOT command MATCHES "-ffp-contract=off")
+        message(FATAL_ERROR "the consumer was compiled without voxray::cpu's default flags: ${command}")
+    endif()
+endif()
+
+if(FAIL_TARGET)
+    run_failing("${FAIL_REGEX}" ${CMAKE_COMMAND} --build ${WORK_DIR}/build --target ${FAIL_TARGET})
+endif()
+
+if(CHECK_TOOL)
+    if(NOT EXISTS ${prefix}/bin/voxray)
+        message(FATAL_ERROR "the voxray tool was not installed (${prefix}/bin/voxray)")
+    endif()
+    run(${prefix}/bin/voxray info builtin:menger:27)
+    # The includable traversal sources, and a user's shader compiled against the installed one.
+    foreach(f brickmap.glsl brickmap.cl dense_grid.glsl dense_grid.cl)
+        if(NOT EXISTS ${prefix}/include/voxray/shaders/${f})
+            message(FATAL_ERROR "voxray/shaders/${f} was not installed")
+        endif()
+    endforeach()
+    find_program(GLSLANG glslangValidator)
+    if(GLSLANG)
+        set(name brickmap)
+        configure_file(${CMAKE_CURRENT_LIST_DIR}/../vulkan/user_trace.comp.in ${WORK_DIR}/user_trace.comp @ONLY)
+        run(${GLSLANG} -V --target-env vulkan1.2 -I${prefix}/include -o ${WORK_DIR}/user_trace.spv ${WORK_DIR}/user_trace.comp)
+    endif()
+endif()
+
+if(INSTALL_CONSUMER)
+    run(${CMAKE_COMMAND} --install ${WORK_DIR}/build --prefix ${WORK_DIR}/consumer-prefix)
+    file(GLOB_RECURSE installed RELATIVE ${WORK_DIR}/consumer-prefix ${WORK_DIR}/consumer-prefix/*)
+    if(NOT installed STREQUAL "bin/consumer")
+        message(FATAL_ERROR "installing the consumer should install bin/consumer only, not: ${installed}")
+    endif()
+endif()
 message(STATUS "the consumer in ${CONSUMER_DIR} was built against voxray and ran")

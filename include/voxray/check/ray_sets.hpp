@@ -1,6 +1,7 @@
 // Ray sets shared by `voxray check`, `voxray bench` and the tests: camera rays from
-// several views, random rays (origins inside and outside the scene, axis-parallel and
-// zero-component directions, finite and infinite tmax), diffuse bounces and shadow rays.
+// several views and random rays (origins inside and outside the scene, axis-parallel and
+// zero-component directions, finite and infinite tmax). Cameras, diffuse bounces and
+// shadow rays are the public helpers of voxray/rays.hpp.
 #pragma once
 #include <algorithm>
 #include <cmath>
@@ -12,29 +13,10 @@
 #include <glm/geometric.hpp>
 
 #include "voxray/core/box.hpp"
-#include "voxray/core/hit.hpp"
 #include "voxray/core/ray.hpp"
-#include "voxray/render/camera.hpp"
+#include "voxray/rays.hpp"
 
 namespace voxray {
-
-// SplitMix64: tiny, seedable and identical on every platform (std distributions are not).
-class rng {
-public:
-    explicit rng(std::uint64_t seed) : state_(seed) {}
-    std::uint64_t next() {
-        std::uint64_t z = (state_ += 0x9E3779B97F4A7C15ull);
-        z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
-        z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
-        return z ^ (z >> 31);
-    }
-    float uniform() { return float(next() >> 40) * (1.0f / 16777216.0f); }  // [0, 1)
-    float uniform(float lo, float hi) { return lo + (hi - lo) * uniform(); }
-    int below(int n) { return int(next() % std::uint64_t(n)); }
-
-private:
-    std::uint64_t state_;
-};
 
 // Random rays around a box. A quarter start inside it, the rest up to half a box outside;
 // an eighth are axis-parallel, an eighth have one zero direction component; a quarter
@@ -83,42 +65,6 @@ inline std::vector<ray> check_rays(const box3i& bounds, int up_axis, std::size_t
     auto random = random_rays(bounds, count - std::min(count, rays.size()), seed);
     rays.insert(rays.end(), random.begin(), random.end());
     rays.resize(count);
-    return rays;
-}
-
-// A point just off the hit face, so that a new ray from it does not start inside the
-// voxel it left.
-inline glm::vec3 offset_hit_point(const ray& r, const hit& h) {
-    glm::vec3 p = r.origin + r.direction * h.t;
-    return p + face_normal(h.normal) * 1e-3f;
-}
-
-// Cosine-weighted diffuse bounces from every hit (misses get an invalid ray: tmin > tmax).
-inline std::vector<ray> secondary_rays(std::span<const ray> primary, std::span<const hit> hits, std::uint64_t seed) {
-    rng g(seed);
-    std::vector<ray> rays(primary.size());
-    for (std::size_t i = 0; i < primary.size(); ++i) {
-        ray& r = rays[i];
-        if (!hits[i].is_hit() || hits[i].normal == face::inside) { r.tmin = 1.0f; r.tmax = 0.0f; continue; }
-        glm::vec3 n = face_normal(hits[i].normal);
-        float u = g.uniform(), v = g.uniform() * 6.2831853f, s = std::sqrt(u);
-        glm::vec3 t = std::abs(n.x) > 0.5f ? glm::vec3(0, 1, 0) : glm::vec3(1, 0, 0);
-        glm::vec3 b1 = glm::normalize(glm::cross(n, t)), b2 = glm::cross(n, b1);
-        r.origin = offset_hit_point(primary[i], hits[i]);
-        r.direction = glm::normalize(b1 * (s * std::cos(v)) + b2 * (s * std::sin(v)) + n * std::sqrt(1.0f - u));
-    }
-    return rays;
-}
-
-// Shadow rays from every hit towards a directional light.
-inline std::vector<ray> shadow_rays(std::span<const ray> primary, std::span<const hit> hits, glm::vec3 to_light) {
-    std::vector<ray> rays(primary.size());
-    for (std::size_t i = 0; i < primary.size(); ++i) {
-        ray& r = rays[i];
-        if (!hits[i].is_hit() || hits[i].normal == face::inside) { r.tmin = 1.0f; r.tmax = 0.0f; continue; }
-        r.origin = offset_hit_point(primary[i], hits[i]);
-        r.direction = glm::normalize(to_light);
-    }
     return rays;
 }
 

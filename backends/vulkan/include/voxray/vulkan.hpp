@@ -11,6 +11,11 @@
 // driver, or Mesa's lavapipe on the CPU). Structures are not limited by
 // maxStorageBufferRange: the shaders reach them by buffer device address.
 #pragma once
+// Set by the CMake target voxray::vulkan, which also brings the Vulkan loader and the
+// compiled shaders: without it the program would compile and then fail to link.
+#ifndef VOXRAY_LINKED_VULKAN
+#error "voxray/vulkan.hpp needs the CMake target voxray::vulkan: target_link_libraries(<your target> PRIVATE voxray::vulkan), after find_package(voxray COMPONENTS vulkan) or add_subdirectory"
+#endif
 #include "voxray/tracer.hpp"
 #include "voxray/vulkan/engine.hpp"
 #include "voxray/vulkan/options.hpp"

@@ -20,11 +20,25 @@
 
 namespace voxray {
 
+// Worker threads that several CPU tracers may share (cpu_options::pool): calls from any
+// number of tracers and threads overlap safely (see thread_pool.hpp).
+using cpu_thread_pool = cpu_detail::thread_pool;
+
 struct cpu_options {
-    unsigned threads = 0;     // 0: one per hardware thread
+    unsigned threads = 0;     // 0: one per hardware thread (ignored when `pool` is given)
     // voxray::cpu lanes: 0 = the widest the CPU runs (16 with AVX-512, 8 with AVX2, else 1:
     // the scalar kernel), or 8 or 16 to insist (an error where the CPU lacks the ISA).
     unsigned simd_width = 0;
+    // Share these workers instead of starting a pool of its own:
+    //   auto pool = std::make_shared<voxray::cpu_thread_pool>(8);
+    //   voxray::tracer<voxray::cpu, voxray::brickmap<>> a(map, {.pool = pool}), b(grid, {.pool = pool});
+    std::shared_ptr<cpu_thread_pool> pool = nullptr;  // (an initializer: no -Wmissing-field-initializers in {.threads = 1})
+    // Trace the structure's own blob in place instead of a copy (no upload cost, no second
+    // copy in memory). The caller promises that the structure is neither edited, moved nor
+    // destroyed while this tracer traces; update() after an edit then only re-points (the
+    // structure may have reallocated its words). Off: the tracer holds a snapshot, and the
+    // structure may change freely between updates.
+    bool borrow_blob = false;
 };
 
 namespace cpu_detail {
@@ -68,17 +82,29 @@ template <bool Simd, class Kernel>
 class cpu_engine {
 public:
     explicit cpu_engine(cpu_options options)
-        : pool_(std::make_unique<thread_pool>(options.threads)), width_(choose_width(options.simd_width)) {}
+        : pool_(options.pool ? std::move(options.pool) : std::make_shared<thread_pool>(options.threads)),
+          width_(choose_width(options.simd_width)),
+          borrow_(options.borrow_blob) {}
+    // Moves keep view_ valid (a moved vector keeps its buffer); a copy would not.
+    cpu_engine(const cpu_engine&) = delete;
+    cpu_engine& operator=(const cpu_engine&) = delete;
+    cpu_engine(cpu_engine&&) noexcept = default;
+    cpu_engine& operator=(cpu_engine&&) noexcept = default;
 
     void upload(std::span<const std::uint32_t> blob) {
+        if (borrow_) {
+            view_ = blob;  // the structure's own words: nothing copied
+            return count_upload(0);
+        }
         blob_.assign(blob.begin(), blob.end());
+        view_ = blob_;
         count_upload(blob.size_bytes());
     }
 
     // Copies only the words of `ranges` (any order; overlaps and empty ranges allowed)
     // into the engine's copy of the blob; a blob of another size is copied whole.
     void update_ranges(std::span<const std::uint32_t> blob, std::span<const word_range> ranges) {
-        if (blob.size() != blob_.size()) return upload(blob);
+        if (borrow_ || blob.size() != blob_.size()) return upload(blob);
         std::uint64_t words = 0;
         for (const word_range& r : sync::normalize_ranges(ranges, blob.size())) {
             std::copy_n(blob.data() + r.offset, r.count, blob_.data() + r.offset);
@@ -92,12 +118,23 @@ public:
     std::uint64_t bytes_uploaded_total() const { return total_bytes_; }
 
     // For tests and diagnostics, like the GPU engines': a copy of the blob traced.
-    std::vector<std::uint32_t> download_blob() const { return blob_; }
+    std::vector<std::uint32_t> download_blob() const { return {view_.begin(), view_.end()}; }
+
+    // The workers this engine runs on (shared with other tracers when cpu_options::pool was given).
+    const std::shared_ptr<thread_pool>& pool() const { return pool_; }
 
     void trace(std::span<const ray> rays, std::span<hit> hits, std::uint32_t mode) {
         // The mode becomes a constant of the kernel: any-hit compiles to its own code.
         if (mode == VX_MODE_ANY) trace_mode<VX_MODE_ANY>(rays, hits);
         else trace_mode<VX_MODE_CLOSEST>(rays, hits);
+    }
+
+    // One ray with the scalar kernel on the calling thread: no pool, no lane set-up
+    // (tracer::closest_hit(const ray&)). Same hit as trace(), bit for bit.
+    hit trace_one(const ray& r, std::uint32_t mode) const {
+        using K = kernels::scalar::kernel_lanes<Kernel>;
+        if (mode == VX_MODE_ANY) return from_lane(K::template trace<VX_MODE_ANY>(view_.data(), to_lane(r)));
+        return from_lane(K::template trace<VX_MODE_CLOSEST>(view_.data(), to_lane(r)));
     }
 
     unsigned threads() const { return pool_->size(); }
@@ -118,7 +155,7 @@ private:
 
     template <std::uint32_t Mode>
     void trace_mode(std::span<const ray> rays, std::span<hit> hits) {
-        const std::uint32_t* blob = blob_.data();
+        const std::uint32_t* blob = view_.data();
         std::size_t batches = (rays.size() + batch_rays - 1) / batch_rays;
         auto batch = [&](std::size_t b) {
             std::size_t begin = b * batch_rays, end = std::min(rays.size(), begin + batch_rays);
@@ -141,9 +178,11 @@ private:
         total_bytes_ += bytes;
     }
 
-    std::unique_ptr<thread_pool> pool_;
+    std::shared_ptr<thread_pool> pool_;
     unsigned width_ = 1;  // 1: the scalar kernel
-    std::vector<std::uint32_t> blob_;
+    bool borrow_ = false;
+    std::vector<std::uint32_t> blob_;     // the copy traced, unless borrowing
+    std::span<const std::uint32_t> view_;  // what is traced: blob_, or the structure's words
     std::uint64_t last_bytes_ = 0, total_bytes_ = 0;
 };
 

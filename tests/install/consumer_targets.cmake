@@ -1,0 +1,63 @@
+# The consumer's targets, shared by the consumer projects (find_package, add_subdirectory,
+# FetchContent). Each is what a user meets:
+#   consumer       traces one ray on every backend target there is; checks the version
+#                  macros; compiled with a strict project's flags (-Wpedantic -Wold-style-cast
+#                  -Wsign-conversion -Werror) together with a file that includes every public
+#                  header. voxray's headers must be system headers for such a project: the
+#                  kernel dialect is full of C casts, which those flags reject.
+#   cpu_opt_out    links voxray::cpu with VOXRAY_CPU_ARCH=none and VOXRAY_CPU_KEEP_FP_CONTRACT
+#                  (consume.cmake checks its compile command holds neither flag).
+#   forgot_vulkan  includes voxray/vulkan.hpp without linking voxray::vulkan: must not compile
+#                  (EXCLUDE_FROM_ALL; consume.cmake builds it and expects the message).
+# EXPECT_VERSION (the version voxray was configured with) is checked against voxray/version.hpp.
+set(CMAKE_EXPORT_COMPILE_COMMANDS ON)
+set(strict -Wall -Wextra -Wpedantic -Wold-style-cast -Wsign-conversion -Werror)
+set(backends "")
+set(defines "")
+foreach(b cpu opencl vulkan)
+    string(TOUPPER ${b} upper)
+    if(TARGET voxray::${b})
+        list(APPEND backends voxray::${b})
+        list(APPEND defines CONSUMER_WITH_${upper}=1)
+    else()
+        list(APPEND defines CONSUMER_WITH_${upper}=0)
+    endif()
+endforeach()
+if(NOT backends)
+    message(FATAL_ERROR "no voxray backend target was found")
+endif()
+
+# Every public header of the core and of the backends linked here (not the Embree and
+# NanoVDB baselines, not the generated tables that the backends include themselves).
+if(VOXRAY_SOURCE_DIR)
+    file(GLOB roots ${VOXRAY_SOURCE_DIR}/include ${VOXRAY_SOURCE_DIR}/backends/*/include)
+else()
+    get_target_property(roots voxray::voxray INTERFACE_INCLUDE_DIRECTORIES)
+endif()
+set(includes "#include \"voxray/version.hpp\"\n")
+foreach(root ${roots})
+    file(GLOB_RECURSE headers RELATIVE ${root} ${root}/voxray/*.hpp)
+    foreach(h ${headers})
+        string(REGEX MATCH "^voxray/(cpu|opencl|vulkan)" backend "${h}")
+        if(h MATCHES "^voxray/(generated|embree|nanovdb)/" OR (backend AND NOT TARGET voxray::${CMAKE_MATCH_1}))
+            continue()
+        endif()
+        string(APPEND includes "#include \"${h}\"\n")
+    endforeach()
+endforeach()
+file(CONFIGURE OUTPUT ${CMAKE_CURRENT_BINARY_DIR}/all_headers.cpp CONTENT "@includes@" @ONLY)
+
+set(src ${CMAKE_CURRENT_LIST_DIR}/consumer)
+add_executable(consumer ${src}/main.cpp ${CMAKE_CURRENT_BINARY_DIR}/all_headers.cpp)
+target_link_libraries(consumer PRIVATE voxray::voxray ${backends})
+target_compile_definitions(consumer PRIVATE ${defines} EXPECT_VERSION="${EXPECT_VERSION}")
+target_compile_options(consumer PRIVATE ${strict})
+
+if(TARGET voxray::cpu)
+    add_executable(cpu_opt_out ${src}/cpu_opt_out.cpp)
+    target_link_libraries(cpu_opt_out PRIVATE voxray::voxray voxray::cpu)
+    set_target_properties(cpu_opt_out PROPERTIES VOXRAY_CPU_ARCH none VOXRAY_CPU_KEEP_FP_CONTRACT ON)
+endif()
+
+add_executable(forgot_vulkan EXCLUDE_FROM_ALL ${src}/forgot_vulkan.cpp)
+target_link_libraries(forgot_vulkan PRIVATE voxray::voxray)
