@@ -17,7 +17,7 @@ echo "== ctest (all backends required)"
 export VOXRAY_REQUIRE_ALL_BACKENDS=1
 (cd "$BUILD_DIR" && ctest --output-on-failure -j"$(nproc)" --timeout 900)
 
-CPU_LABELS='^(cpu|io|mesh|brickmap|naadf|sync|conformance|nanovdb)$'
+CPU_LABELS='^(cpu|io|mesh|malformed|brickmap|naadf|sync|conformance|nanovdb)$'
 CPU_ONLY=(-DCMAKE_DISABLE_FIND_PACKAGE_OpenCL=ON -DCMAKE_DISABLE_FIND_PACKAGE_Vulkan=ON
           -DCMAKE_DISABLE_FIND_PACKAGE_embree=ON -DVOXRAY_BUILD_TOOLS=OFF)
 # Sanitizer builds: -O1 with line tables only, which compiles about twice as fast as -O2 -g.
