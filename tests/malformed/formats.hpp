@@ -7,6 +7,8 @@
 #include <filesystem>
 #include <fstream>
 #include <string>
+#include <unordered_set>
+
 #include <unistd.h>
 
 #include "mutations.hpp"
@@ -141,9 +143,19 @@ inline input_format vox_format() {
 }
 
 // Meshes load through the reader and a small voxelization (the voxelizer sees the
-// strange coordinates too).
+// strange coordinates too), once per distinct mesh: many mutants read as the same mesh,
+// and a voxelization costs a 2 MiB tile buffer (slow to map under ASan).
 inline void load_and_voxelize(const io::triangle_mesh& mesh) {
-    if (mesh.triangle_count()) (void)io::voxelize(mesh, {24, 1});
+    if (!mesh.triangle_count()) return;
+    static std::unordered_set<std::uint64_t> seen;
+    std::uint64_t h = 0xcbf29ce484222325ull;
+    auto mix = [&](const void* p, std::size_t n) {
+        for (std::size_t i = 0; i < n; ++i) h = (h ^ static_cast<const std::uint8_t*>(p)[i]) * 0x100000001b3ull;
+    };
+    mix(mesh.positions.data(), mesh.positions.size() * sizeof(mesh.positions[0]));
+    mix(mesh.triangles.data(), mesh.triangles.size() * sizeof(mesh.triangles[0]));
+    mix(mesh.groups.data(), mesh.groups.size() * sizeof(std::uint32_t));
+    if (seen.insert(h).second) (void)io::voxelize(mesh, {24, 1});
 }
 
 inline input_format obj_format() {

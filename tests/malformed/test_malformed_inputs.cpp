@@ -6,6 +6,7 @@
 #include <exception>
 #include <string>
 #include <typeinfo>
+#include <vector>
 
 #include <gtest/gtest.h>
 
@@ -92,6 +93,18 @@ TEST(mutation_generator, is_deterministic_and_covers_each_kind) {
     bool nan = false;
     for (auto& m : make_mutants(obj, obj.samples[0], 5)) nan |= m.what.find("'nan'") != std::string::npos;
     EXPECT_TRUE(nan);
+}
+
+// The memory check can fail: a loader that allocated this much for a small input would.
+TEST(alloc_meter, sees_a_large_allocation) {
+    reset_peak();
+    std::size_t before = live_bytes();
+    {
+        std::vector<char> big(memory_bound(100) + 1);
+        big.back() = 1;
+    }
+    EXPECT_GT(peak_bytes() - before, memory_bound(100));
+    EXPECT_EQ(live_bytes(), before);
 }
 
 }  // namespace
