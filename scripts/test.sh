@@ -62,8 +62,11 @@ gpu_asan_pass() {
     [ -n "$targets" ] || { echo "no tests labelled $labels"; return 1; }
     # shellcheck disable=SC2086
     cmake --build "$dir" -j"$(nproc)" --target $targets
+    # until-pass:2: under load, LeakSanitizer's stop-the-world tracer itself can crash at
+    # exit while PoCL's worker threads wind down ("Tracer caught signal 11", 1 run in ~10
+    # here, never alone); a real leak or error fails both runs.
     (cd "$dir" && ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 \
-        ctest --output-on-failure -j"$(nproc)" --timeout 900 -L "$labels")
+        ctest --output-on-failure -j"$(nproc)" --timeout 900 --repeat until-pass:2 -L "$labels")
     echo "== AddressSanitizer + UBSan with OpenCL and Vulkan: passed in $((SECONDS - start)) s"
 }
 gpu_asan_pass
