@@ -203,7 +203,7 @@ int run_matrix(const bench_options& o) {
         std::unique_ptr<traceable> reference_engine;
         std::vector<ray_set> sets;
         try {  // a scene that cannot be loaded is one error row; the other scenes still run
-            model = load_scene(spec, o.scene.resolution);
+            model = load_scene(spec, o.scene);
             reference = build_structure("dense", model);
             std::fprintf(stderr, "tracing the reference (dense, cpu) for the ray sets ...\n");
             reference_engine = reference->trace_on("cpu");

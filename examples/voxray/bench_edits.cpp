@@ -26,7 +26,7 @@ int run_edit_bench(const bench_options& o) {
     const int frames = o.runs;
     constexpr int balls = 50, radius = 25;
 
-    auto model = load_scene(o.scene.scenes[0], o.scene.resolution);
+    auto model = load_scene(o.scene.scenes[0], o.scene);
     box3i world = model.bounds();
     if (world.empty()) fail("scene ", o.scene.scenes[0], " has no voxels: its world is empty, so there is nowhere to edit");
     auto structure = build_structure(structure_name, model);

@@ -55,7 +55,7 @@ void apply_edits(const std::vector<region_edit>& edits, voxel_model& model, std:
 
 int check(const check_options& o) {
     if (!o.json.empty()) require_writable(o.json, "--json");
-    auto model = load_scene(o.scene.scenes[0], o.scene.resolution);
+    auto model = load_scene(o.scene.scenes[0], o.scene);
     box3i world = model.bounds();
 
     // Every pair is set up before any edit, so that edits reach it through update().

@@ -17,7 +17,7 @@ command add_info(CLI::App& parent) {
         ->check(names_from(all_structure_names(), "structure"))
         ->capture_default_str();
     return {app, [=] {
-        auto model = load_scene(scene->scenes[0], scene->resolution);
+        auto model = load_scene(scene->scenes[0], *scene);
         auto e = model.bounds().extent();
         std::bitset<256> used;  // palette entries that some voxel uses
         model.for_each_voxel([&](glm::ivec3, std::uint8_t v) { used.set(v); });

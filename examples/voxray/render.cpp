@@ -41,7 +41,7 @@ int render(const render_options& o) {
     require_memory(bytes_per_pixel * std::uint64_t(o.width) * std::uint64_t(o.height),
                    "render " + std::to_string(o.width) + " x " + std::to_string(o.height) + " (" +
                        std::to_string(bytes_per_pixel) + " bytes a pixel)");
-    auto model = load_scene(o.scene.scenes[0], o.scene.resolution);
+    auto model = load_scene(o.scene.scenes[0], o.scene);
     std::fprintf(stderr, "building %s ...\n", o.structure.c_str());
     auto structure = build_structure(o.structure, model);
     auto engine = structure->trace_on(o.backend);

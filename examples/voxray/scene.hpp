@@ -2,6 +2,7 @@
 // --resolution), or builtin:NAME for the procedural scenes.
 #pragma once
 #include <chrono>
+#include <cstdint>
 #include <cstdio>
 #include <filesystem>
 #include <string>
@@ -15,10 +16,14 @@
 
 namespace voxray::tool {
 
-// SCENE (one, or several for bench) and --resolution, as every command takes them.
+// SCENE (one, or several for bench), --resolution and the input limits, as every
+// command takes them. The limits bound what a small file may cost (issue 12, item 10).
 struct scene_options {
     std::vector<std::string> scenes;
     int resolution = 512;
+    std::uint64_t max_voxels = io::vox_options{}.max_placed_voxels;
+    std::uint64_t max_model_mib = io::vox_options{}.max_model_bytes >> 20;
+    std::uint64_t max_cell_tests = io::voxelize_options{}.max_cell_tests;
 
     void add_to(CLI::App* app, bool many) {
         auto* opt = app->add_option("scene", scenes, many ? "one or more scenes (a file or builtin:NAME)" : "a .vox/.obj/.ply file or builtin:NAME")
@@ -27,10 +32,19 @@ struct scene_options {
         app->add_option("--resolution", resolution, "voxels along a mesh's longest side")
             ->check(CLI::Range(1, 4096))
             ->capture_default_str();
+        app->add_option("--max-voxels", max_voxels, "most voxels a .vox scene may place (instances counted)")
+            ->check(CLI::Range(std::uint64_t(1), std::uint64_t(1) << 40))
+            ->capture_default_str();
+        app->add_option("--max-model-mib", max_model_mib, "most memory (MiB) a .vox scene's voxels may need")
+            ->check(CLI::Range(std::uint64_t(1), std::uint64_t(1) << 30))
+            ->capture_default_str();
+        app->add_option("--max-cell-tests", max_cell_tests, "most cells voxelizing a mesh may test (an estimate)")
+            ->check(CLI::Range(std::uint64_t(1), std::uint64_t(1) << 50))
+            ->capture_default_str();
     }
 };
 
-inline voxel_model load_scene(const std::string& spec, int resolution) {
+inline voxel_model load_scene(const std::string& spec, const scene_options& o) {
     auto start = std::chrono::steady_clock::now();
     std::fprintf(stderr, "loading %s ...\n", spec.c_str());
     voxel_model model;
@@ -40,8 +54,10 @@ inline voxel_model load_scene(const std::string& spec, int resolution) {
         std::filesystem::path path(spec);
         if (!std::filesystem::exists(path)) fail("scene file ", spec, " does not exist");
         auto ext = path.extension().string();
-        if (ext == ".vox") model = io::load_vox(path);
-        else if (io::is_mesh_path(path)) model = io::load_mesh_model(path, resolution);
+        if (ext == ".vox")
+            model = io::load_vox(path, {.max_placed_voxels = o.max_voxels, .max_model_bytes = o.max_model_mib << 20});
+        else if (io::is_mesh_path(path))
+            model = io::load_mesh_model(path, o.resolution, {.max_cell_tests = o.max_cell_tests});
         else fail("scene ", spec, ": unknown file type '", ext, "' (expected .vox, .obj, .ply or builtin:NAME)");
     }
     double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

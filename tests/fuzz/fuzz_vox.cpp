@@ -16,6 +16,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     options.max_instances = 1 << 14;
     options.max_node_visits = 1 << 16;
     options.max_placed_voxels = 1 << 22;
+    options.max_model_bytes = std::uint64_t(256) << 20;
     try {
         auto scene = voxray::io::read_vox_scene(std::span<const std::uint8_t>(data, size), "fuzz.vox", options);
         // Touch the results so nothing is optimised away.

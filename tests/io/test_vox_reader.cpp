@@ -15,6 +15,7 @@
 #include <gtest/gtest.h>
 
 #include "test_data.hpp"
+#include "vox_bytes.hpp"
 #include "voxray/io/vox_reader.hpp"
 
 namespace {
@@ -22,79 +23,7 @@ namespace {
 using namespace voxray;
 using namespace voxray::io;
 using bytes = std::vector<std::uint8_t>;
-
-// ---------------------------------------------------------------------------------
-// Building .vox files byte by byte.
-
-void put_u32(bytes& b, std::uint32_t v) {
-    for (int i = 0; i < 4; ++i) b.push_back(std::uint8_t(v >> (8 * i)));
-}
-void put_str(bytes& b, const std::string& s) {
-    put_u32(b, std::uint32_t(s.size()));
-    b.insert(b.end(), s.begin(), s.end());
-}
-using dict = std::vector<std::pair<std::string, std::string>>;
-void put_dict(bytes& b, const dict& d) {
-    put_u32(b, std::uint32_t(d.size()));
-    for (auto& [k, v] : d) put_str(b, k), put_str(b, v);
-}
-
-bytes chunk(const char* id, const bytes& content, std::uint32_t children = 0) {
-    bytes b(id, id + 4);
-    put_u32(b, std::uint32_t(content.size()));
-    put_u32(b, children);
-    b.insert(b.end(), content.begin(), content.end());
-    return b;
-}
-
-bytes vox(const std::vector<bytes>& chunks, int version = 150, std::int64_t main_children = -1) {
-    bytes body;
-    for (auto& c : chunks) body.insert(body.end(), c.begin(), c.end());
-    bytes b{'V', 'O', 'X', ' '};
-    put_u32(b, std::uint32_t(version));
-    b.insert(b.end(), {'M', 'A', 'I', 'N'});
-    put_u32(b, 0);
-    put_u32(b, main_children < 0 ? std::uint32_t(body.size()) : std::uint32_t(main_children));
-    b.insert(b.end(), body.begin(), body.end());
-    return b;
-}
-
-bytes size_chunk(int x, int y, int z) {
-    bytes c;
-    put_u32(c, std::uint32_t(x)), put_u32(c, std::uint32_t(y)), put_u32(c, std::uint32_t(z));
-    return chunk("SIZE", c);
-}
-bytes xyzi_chunk(const std::vector<std::array<std::uint8_t, 4>>& voxels) {
-    bytes c;
-    put_u32(c, std::uint32_t(voxels.size()));
-    for (auto& v : voxels) c.insert(c.end(), v.begin(), v.end());
-    return chunk("XYZI", c);
-}
-bytes ntrn(int id, int child, const dict& frame, const dict& attributes = {}, int layer = 0) {
-    bytes c;
-    put_u32(c, std::uint32_t(id));
-    put_dict(c, attributes);
-    put_u32(c, std::uint32_t(child)), put_u32(c, 0xffffffffu), put_u32(c, std::uint32_t(layer));
-    put_u32(c, 1);
-    put_dict(c, frame);
-    return chunk("nTRN", c);
-}
-bytes ngrp(int id, const std::vector<int>& children) {
-    bytes c;
-    put_u32(c, std::uint32_t(id));
-    put_dict(c, {});
-    put_u32(c, std::uint32_t(children.size()));
-    for (int ch : children) put_u32(c, std::uint32_t(ch));
-    return chunk("nGRP", c);
-}
-bytes nshp(int id, const std::vector<std::pair<int, dict>>& models) {
-    bytes c;
-    put_u32(c, std::uint32_t(id));
-    put_dict(c, {});
-    put_u32(c, std::uint32_t(models.size()));
-    for (auto& [m, d] : models) put_u32(c, std::uint32_t(m)), put_dict(c, d);
-    return chunk("nSHP", c);
-}
+using namespace voxray::test::vox_bytes;
 
 // One 3x2x1 model, voxels (0,0,0)=1 (1,0,0)=2 (2,1,0)=3: asymmetric, to see rotations.
 std::vector<bytes> small_model() {
@@ -699,9 +628,13 @@ TEST(VoxReaderErrors, DepthAndInstancingBlowUpAreBounded) {
               std::string::npos);
     EXPECT_EQ(vox_options{}.max_instances, 1u << 20);
     EXPECT_EQ(vox_options{}.max_node_visits, 1u << 22);
-    // A smaller placed-voxel budget trips first.
-    chunks.back() = nshp(41, {{0, {}}});
-    EXPECT_NE(error_of(vox(chunks), {.max_placed_voxels = 1000}).find("placed voxels exceed"), std::string::npos);
+    // A placed-voxel budget: 10 levels, 1024 instances of 3 voxels (counted before placing).
+    chunks = small_model();
+    chunks.push_back(ntrn(0, 1, {}));
+    for (int i = 1; i <= 10; ++i) chunks.push_back(ngrp(i, {i + 1, i + 1}));
+    chunks.push_back(nshp(11, {{0, {}}}));
+    EXPECT_NE(error_of(vox(chunks), {.max_placed_voxels = 1000}).find("above the limit of 1000 placed voxels"),
+              std::string::npos);
 }
 
 TEST(VoxReaderErrors, HugeCountsAreBoundedByTheBytesLeft) {

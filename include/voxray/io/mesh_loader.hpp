@@ -4,6 +4,7 @@
 #pragma once
 #include <algorithm>
 #include <cctype>
+#include <cstdint>
 #include <filesystem>
 #include <string>
 
@@ -18,6 +19,7 @@ namespace voxray::io {
 
 struct mesh_load_options {
     unsigned threads = 0;  // voxelizer threads; 0: all hardware threads
+    std::uint64_t max_cell_tests = voxelize_options{}.max_cell_tests;  // the voxelizer's work limit
 };
 
 inline bool is_mesh_path(const std::filesystem::path& path) {
@@ -40,9 +42,13 @@ inline voxel_model load_mesh_model(const std::filesystem::path& path, int resolu
     if (resolution < 1 || resolution > max_voxelize_resolution)  // before reading a large file
         fail("voxelization resolution ", resolution, " is outside the supported range 1..", max_voxelize_resolution);
     auto mesh = load_mesh(path);
-    auto model = voxelize(mesh, {resolution, opt.threads});
-    model.up_axis = 1;
-    return model;
+    try {
+        auto model = voxelize(mesh, {resolution, opt.threads, opt.max_cell_tests});
+        model.up_axis = 1;
+        return model;
+    } catch (const error& e) {
+        fail(path.string(), ": ", e.what());  // the voxelizer's message, with the file
+    }
 }
 
 }  // namespace voxray::io

@@ -64,8 +64,9 @@ inline vox_scene read_vox_scene(std::span<const std::uint8_t> bytes, std::string
     return scene;
 }
 
-inline voxel_model read_vox(std::span<const std::uint8_t> bytes, std::string_view name_for_errors) {
-    return std::move(read_vox_scene(bytes, name_for_errors).model);
+inline voxel_model read_vox(std::span<const std::uint8_t> bytes, std::string_view name_for_errors,
+                            const vox_options& options = {}) {
+    return std::move(read_vox_scene(bytes, name_for_errors, options).model);
 }
 
 // The whole file as bytes; throws voxray::error when it cannot be read.
@@ -86,6 +87,8 @@ inline vox_scene load_vox_scene(const std::filesystem::path& path, const vox_opt
     return read_vox_scene(bytes, path.string(), options);
 }
 
-inline voxel_model load_vox(const std::filesystem::path& path) { return std::move(load_vox_scene(path).model); }
+inline voxel_model load_vox(const std::filesystem::path& path, const vox_options& options = {}) {
+    return std::move(load_vox_scene(path, options).model);
+}
 
 }  // namespace voxray::io

@@ -15,10 +15,17 @@
 // Axes stay those of the file: x, y, z with Z up. Voxels written later in traversal
 // order (depth first, children in file order) overwrite earlier ones.
 //
+// Cost is checked before anything is written: a first walk of the graph counts the
+// instances, the voxels they place and an upper bound of the model's memory, so a small
+// file that instances one model a million times is refused in milliseconds, with the
+// numbers, instead of after minutes and gigabytes (issue 12, item 10). The limits are
+// vox_options fields; the tool sets them with --max-voxels and --max-model-mib.
+//
 // Animation: a transform keeps a list of keyframes (_f) and a shape a list of models
 // with keyframes. For frame F we use the keyframe with the largest _f <= F (the one
 // that is showing at F), or the earliest keyframe when all start after F.
 #pragma once
+#include <algorithm>
 #include <cstdint>
 #include <string_view>
 #include <unordered_map>
@@ -39,7 +46,9 @@ struct vox_options {
     int max_depth = 64;           // nodes on one root-to-leaf path
     std::uint64_t max_instances = std::uint64_t(1) << 20;
     std::uint64_t max_node_visits = std::uint64_t(1) << 22;  // bounds instancing blow-up
-    std::uint64_t max_placed_voxels = std::uint64_t(1) << 28;
+    std::uint64_t max_placed_voxels = std::uint64_t(1) << 27;  // voxels written, overlaps counted
+    // Upper bound of the composed model's memory (its 16^3 chunks), checked before placing.
+    std::uint64_t max_model_bytes = std::uint64_t(4) << 30;
 };
 
 struct vox_scene_stats {
@@ -49,6 +58,7 @@ struct vox_scene_stats {
     std::size_t instances = 0;        // models placed (shapes reached, for the frame)
     std::uint64_t placed_voxels = 0;  // voxels written, before overlaps merge
     box3i placed_bounds;              // union of the placed models' SIZE boxes
+    std::uint64_t model_bytes_bound = 0;  // what the limit max_model_bytes was checked against
     bool has_palette = false;         // RGBA chunk present
     int material_chunks = 0;          // MATL chunks
 };
@@ -85,7 +95,40 @@ public:
                  vox_scene_stats& stats)
         : file_(file), options_(options), name_(name), out_(out), stats_(stats) {}
 
+    // Counts first (nothing written), checks the totals, then places.
     void run() {
+        walk();
+        check_totals();
+        counting_ = false;
+        visits_ = 0;
+        walk();
+    }
+
+private:
+    // Worst case of new chunks: each instance fills at most min(voxels, chunks its box
+    // spans), and all of them at most the chunks of the union of the boxes.
+    void check_totals() {
+        const auto& b = stats_.placed_bounds;
+        std::uint64_t union_chunks = 0;
+        if (!b.empty()) {
+            union_chunks = 1;
+            for (int i = 0; i < 3; ++i)
+                union_chunks *= std::uint64_t(((b.max[i] - 1) >> voxel_model::chunk_bits) -
+                                              (b.min[i] >> voxel_model::chunk_bits) + 1);
+        }
+        constexpr std::uint64_t chunk_bytes = sizeof(voxel_model::chunk) + 64;  // + hash-map node
+        stats_.model_bytes_bound = std::min(chunk_bound_, union_chunks) * chunk_bytes;
+        if (stats_.placed_voxels > options_.max_placed_voxels)
+            fail(name_, ": the scene places ", stats_.placed_voxels, " voxels (", stats_.instances,
+                 " model instances), above the limit of ", options_.max_placed_voxels,
+                 " placed voxels (vox_options::max_placed_voxels)");
+        if (stats_.model_bytes_bound > options_.max_model_bytes)
+            fail(name_, ": the scene's ", stats_.instances, " model instances may need up to ",
+                 stats_.model_bytes_bound, " bytes of voxel chunks, above the limit of ", options_.max_model_bytes,
+                 " bytes (vox_options::max_model_bytes)");
+    }
+
+    void walk() {
         if (file_.nodes.empty()) {
             // No scene graph: min corner at the origin, i.e. T = the pivot.
             for (std::size_t m = 0; m < file_.models.size(); ++m) {
@@ -102,7 +145,6 @@ public:
         visit(root->second, vox_placement{}, 1);
     }
 
-private:
     template <class... Parts>
     [[noreturn]] void node_error(const vox_node& n, Parts&&... parts) const {
         fail(name_, ": byte ", n.offset, " in chunk '", node_chunk(n), "': node ", n.id, ": ",
@@ -162,11 +204,11 @@ private:
         if (model_id < 0 || std::size_t(model_id) >= file_.models.size())
             bad("model id ", model_id, " is outside 0..", std::int64_t(file_.models.size()) - 1);
         const vox_model_data& m = file_.models[std::size_t(model_id)];
-        if (++stats_.instances > options_.max_instances)
-            bad("more than ", options_.max_instances, " model instances");
-        stats_.placed_voxels += m.voxels.size();
-        if (stats_.placed_voxels > options_.max_placed_voxels)
-            bad("placed voxels exceed the limit of ", options_.max_placed_voxels);
+        if (counting_) {
+            if (++stats_.instances > options_.max_instances)
+                bad("more than ", options_.max_instances, " model instances");
+            stats_.placed_voxels += m.voxels.size();
+        }
 
         // The placed box: transform the two extreme corners (a signed permutation maps
         // the box's corners to the new box's corners).
@@ -179,7 +221,14 @@ private:
             if (lo[i] < -limit || hi[i] >= limit)
                 bad("model ", model_id, " placed at (", lo.x, ", ", lo.y, ", ", lo.z, ")..(", hi.x, ", ", hi.y, ", ",
                     hi.z, ") is outside the coordinate limit of +-", limit);
-        stats_.placed_bounds.include(box3i{glm::ivec3(lo), glm::ivec3(hi) + 1});
+        if (counting_) {
+            stats_.placed_bounds.include(box3i{glm::ivec3(lo), glm::ivec3(hi) + 1});
+            std::uint64_t box_chunks = 1;
+            for (int i = 0; i < 3; ++i)
+                box_chunks *= std::uint64_t((hi[i] >> voxel_model::chunk_bits) - (lo[i] >> voxel_model::chunk_bits) + 1);
+            chunk_bound_ += std::min<std::uint64_t>(box_chunks, m.voxels.size());
+            return;
+        }
 
         glm::ivec3 t(p.translation);
         glm::ivec3 piv(pivot);
@@ -197,6 +246,8 @@ private:
     std::unordered_map<std::int32_t, std::size_t> index_;
     std::vector<bool> on_path_;
     std::uint64_t visits_ = 0;
+    bool counting_ = true;        // first walk: count and check, write nothing
+    std::uint64_t chunk_bound_ = 0;
 };
 
 }  // namespace detail

@@ -14,18 +14,27 @@
 //      chunks, which are moved into the model at the end.
 // Within a tile triangles run in file order and the first one to reach a voxel
 // gives it its colour, so the result does not depend on the thread count.
+//
+// Work is bounded before it starts (issue 12, item 10): a triangle that repeats an
+// earlier one exactly (the same three positions in the same order, whatever the
+// indices) can change nothing, so it is dropped; and the cells the rest may test are
+// estimated up front and checked against voxelize_options::max_cell_tests.
 #pragma once
 #include <algorithm>
+#include <array>
 #include <atomic>
+#include <bit>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
 #include <limits>
 #include <memory>
+#include <unordered_set>
 #include <utility>
 #include <vector>
 
 #include <glm/common.hpp>
+#include <glm/geometric.hpp>
 #include <glm/vec3.hpp>
 
 #include "voxray/core/error.hpp"
@@ -70,6 +79,18 @@ inline voxel_grid_map make_grid_map(const mesh_bounds& b, int resolution) {
 struct voxelize_options {
     int resolution = 256;  // voxels along the longest axis of the mesh bounds, 1..4096
     unsigned threads = 0;  // 0: std::thread::hardware_concurrency()
+    // Upper bound of the estimated cell tests (see estimated_cell_tests); about 10 s a
+    // 2^30 here. The shared meshes need well under 2^30 at resolution 4096.
+    std::uint64_t max_cell_tests = std::uint64_t(1) << 32;
+};
+
+// What a voxelization did, for callers and tests (a count, not a time).
+struct voxelize_stats {
+    std::size_t triangles = 0;           // in the mesh
+    std::size_t unique_triangles = 0;    // after exact duplicates were dropped
+    std::uint64_t estimated_cells = 0;   // what max_cell_tests was checked against
+    std::uint64_t rasterized = 0;        // (triangle, tile) pairs rasterized
+    std::uint64_t cells_tested = 0;      // exact triangle/cell tests run
 };
 
 namespace detail {
@@ -98,8 +119,10 @@ inline bool cell_span(double lo, double hi, int a, int b, int& first, int& last)
 // the triangle (so each column holds at most ~3 candidates), and each candidate
 // gets the exact test. `slack` widens candidate ranges against rounding; it never
 // widens the exact test, which has its own far smaller slack.
+// `tested` (if given) counts the exact tests.
 template <class Emit>
-void rasterize_triangle(const triangle_cell_test& tri, glm::ivec3 lo, glm::ivec3 hi, Emit&& emit) {
+void rasterize_triangle(const triangle_cell_test& tri, glm::ivec3 lo, glm::ivec3 hi, std::uint64_t* tested,
+                        Emit&& emit) {
     constexpr double slack = 1e-7;
     glm::ivec3 first, last;
     for (int i = 0; i < 3; ++i)
@@ -150,6 +173,7 @@ void rasterize_triangle(const triangle_cell_test& tri, glm::ivec3 lo, glm::ivec3
             if (!cell_span(wmin - slack, wmax + slack, first[w], last[w], cw0, cw1)) continue;
             glm::ivec3 cell;
             cell[u] = cu, cell[v] = cv;
+            if (tested) *tested += std::uint64_t(cw1 - cw0 + 1);
             for (cell[w] = cw0; cell[w] <= cw1; ++cell[w])
                 if (tri.overlaps(glm::dvec3(cell))) emit(cell);
         }
@@ -192,7 +216,47 @@ void for_each_tile_of(const glm::dvec3* v, const voxel_grid_map& g, ForTiles&& f
             }
 }
 
-inline tile_bins bin_triangles(const std::vector<glm::dvec3>& vox, const triangle_mesh& mesh, const voxel_grid_map& g) {
+// Triangles in file order without exact repeats of an earlier one (same positions, same
+// order; compared bitwise, so -0 and 0 differ and nothing is merged by mistake).
+inline std::vector<std::uint32_t> unique_triangles(const triangle_mesh& mesh) {
+    using key = std::array<std::uint64_t, 9>;
+    struct key_hash {
+        std::size_t operator()(const key& k) const {
+            std::uint64_t h = 0x9e3779b97f4a7c15ull;
+            for (auto w : k) h = (h ^ w) * 0x100000001b3ull, h ^= h >> 29;
+            return std::size_t(h);
+        }
+    };
+    std::unordered_set<key, key_hash> seen;
+    seen.reserve(mesh.triangles.size());
+    std::vector<std::uint32_t> ids;
+    ids.reserve(mesh.triangles.size());
+    for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
+        key k;
+        for (int c = 0; c < 3; ++c)
+            for (int a = 0; a < 3; ++a) k[3 * c + a] = std::bit_cast<std::uint64_t>(mesh.positions[mesh.triangles[t][c]][a]);
+        if (seen.insert(k).second) ids.push_back(std::uint32_t(t));
+    }
+    return ids;
+}
+
+// Cells rasterize_triangle may test for a triangle in voxel units: the columns it
+// covers on its most facing plane (area plus a border of one cell along its edges),
+// up to three cells deep each (the plane's slope there is at most 1).
+inline double estimated_cell_tests(const glm::dvec3* v) {
+    glm::dvec3 n = glm::cross(v[1] - v[0], v[2] - v[0]), an = glm::abs(n);
+    int w = an.x >= an.y && an.x >= an.z ? 0 : (an.y >= an.z ? 1 : 2);
+    int u = (w + 1) % 3, vv = (w + 2) % 3;
+    double border = 0;
+    for (int k = 0; k < 3; ++k) {
+        glm::dvec3 e = v[(k + 1) % 3] - v[k];
+        border += std::abs(e[u]) + std::abs(e[vv]);
+    }
+    return 3.0 * (0.5 * an[w] + border + 4.0);
+}
+
+inline tile_bins bin_triangles(const std::vector<glm::dvec3>& vox, const triangle_mesh& mesh,
+                               const std::vector<std::uint32_t>& triangles, const voxel_grid_map& g) {
     tile_bins bins;
     bins.tiles = (g.dims + (tile_edge - 1)) / tile_edge;
     std::size_t tile_total = std::size_t(bins.tiles.x) * bins.tiles.y * bins.tiles.z;
@@ -201,7 +265,7 @@ inline tile_bins bin_triangles(const std::vector<glm::dvec3>& vox, const triangl
         for (int k = 0; k < 3; ++k) v[k] = vox[mesh.triangles[t][k]];
     };
     glm::dvec3 v[3];
-    for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {  // pass 1: counts
+    for (std::uint32_t t : triangles) {  // pass 1: counts
         corners(t, v);
         for_each_tile_of(v, g, [&](glm::ivec3 c) { ++count[bins.tile_index(c)]; });
     }
@@ -211,9 +275,9 @@ inline tile_bins bin_triangles(const std::vector<glm::dvec3>& vox, const triangl
     check_limit("voxelizer triangle/tile pair count", bins.offsets[tile_total], max_tile_pairs);
     bins.ids.resize(bins.offsets[tile_total]);
     std::vector<std::size_t> cursor(bins.offsets.begin(), bins.offsets.end() - 1);
-    for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {  // pass 2: fill, file order kept
+    for (std::uint32_t t : triangles) {  // pass 2: fill, file order kept
         corners(t, v);
-        for_each_tile_of(v, g, [&](glm::ivec3 c) { bins.ids[cursor[bins.tile_index(c)]++] = std::uint32_t(t); });
+        for_each_tile_of(v, g, [&](glm::ivec3 c) { bins.ids[cursor[bins.tile_index(c)]++] = t; });
     }
     return bins;
 }
@@ -222,7 +286,8 @@ inline tile_bins bin_triangles(const std::vector<glm::dvec3>& vox, const triangl
 
 // Voxelizes the surface of `mesh`. Palette: one colour per group (group_palette.hpp).
 // The model's up_axis is left for the caller (load_mesh_model sets 1, Y up).
-inline voxel_model voxelize(const triangle_mesh& mesh, const voxelize_options& opt = {}) {
+inline voxel_model voxelize(const triangle_mesh& mesh, const voxelize_options& opt = {},
+                            voxelize_stats* stats_out = nullptr) {
     using namespace detail;
     if (mesh.triangles.empty()) fail("cannot voxelize a mesh with no triangles");
     mesh.validate();
@@ -230,7 +295,21 @@ inline voxel_model voxelize(const triangle_mesh& mesh, const voxelize_options& o
 
     std::vector<glm::dvec3> vox(mesh.positions.size());
     for (std::size_t i = 0; i < vox.size(); ++i) vox[i] = grid.to_voxel(mesh.positions[i]);
-    auto bins = bin_triangles(vox, mesh, grid);
+    voxelize_stats stats;
+    stats.triangles = mesh.triangles.size();
+    auto triangles = unique_triangles(mesh);
+    stats.unique_triangles = triangles.size();
+    double estimate = 0;
+    for (std::uint32_t t : triangles) {
+        glm::dvec3 v[3] = {vox[mesh.triangles[t].x], vox[mesh.triangles[t].y], vox[mesh.triangles[t].z]};
+        estimate += estimated_cell_tests(v);
+    }
+    stats.estimated_cells = std::uint64_t(std::min(estimate, 1.8e19));
+    if (stats.estimated_cells > opt.max_cell_tests)
+        fail("voxelizing ", stats.unique_triangles, " distinct triangles (of ", stats.triangles, ") at resolution ",
+             opt.resolution, " would test about ", stats.estimated_cells, " cells, above the limit of ",
+             opt.max_cell_tests, " (voxelize_options::max_cell_tests)");
+    auto bins = bin_triangles(vox, mesh, triangles, grid);
 
     // Busiest tiles first, so the last tile to finish is a small one.
     std::vector<int> order;
@@ -248,11 +327,13 @@ inline voxel_model voxelize(const triangle_mesh& mesh, const voxelize_options& o
     unsigned threads = resolve_build_threads(opt.threads, order.size());
     std::vector<std::vector<placed_chunk>> results(threads);
     std::atomic<std::size_t> next{0};
+    std::atomic<std::uint64_t> cells_tested{0};
     run_build_threads(threads, [&](unsigned id) {
         constexpr int cv = voxel_model::chunk_voxels;
         std::vector<std::uint8_t> buffer(std::size_t(tile_chunk_count) * cv, 0);  // chunk-major
         std::vector<int> touched;
         std::vector<char> is_touched(tile_chunk_count, 0);
+        std::uint64_t tested = 0;
         for (std::size_t k; (k = next.fetch_add(1)) < order.size();) {
             int tile = order[k];
             glm::ivec3 origin = bins.tile_coord(tile) * tile_edge;
@@ -262,7 +343,7 @@ inline voxel_model voxelize(const triangle_mesh& mesh, const voxelize_options& o
                 auto& ix = mesh.triangles[t];
                 std::uint8_t colour = group_palette_index(mesh.group_of(t));
                 triangle_cell_test test(vox[ix.x], vox[ix.y], vox[ix.z]);
-                rasterize_triangle(test, origin, hi, [&](glm::ivec3 cell) {
+                rasterize_triangle(test, origin, hi, &tested, [&](glm::ivec3 cell) {
                     glm::ivec3 l = (cell - origin) >> voxel_model::chunk_bits;
                     int lc = l.x | (l.y << tile_chunks_bits) | (l.z << (2 * tile_chunks_bits));
                     auto& b = buffer[std::size_t(lc) * cv + voxel_model::local_index(cell)];
@@ -281,7 +362,11 @@ inline voxel_model voxelize(const triangle_mesh& mesh, const voxelize_options& o
             }
             touched.clear();
         }
+        cells_tested += tested;
     });
+    stats.rasterized = bins.ids.size();
+    stats.cells_tested = cells_tested;
+    if (stats_out) *stats_out = stats;
 
     voxel_model model;
     std::size_t total = 0;

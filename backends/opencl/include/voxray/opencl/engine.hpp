@@ -30,6 +30,15 @@ constexpr program_source find_program(std::string_view name) {
     return {name, nullptr};
 }
 
+// Whether kernel `name` has an embedded program. By name, not by comparing the source's
+// address with null: g++ with -fsanitize=address does not fold an extern array's address
+// in a constant expression, and the ASan build would not compile.
+constexpr bool has_program(std::string_view name) {
+    for (const program_source& p : registered_programs)
+        if (p.name == name) return true;
+    return false;
+}
+
 // Work-items per group. 64 fills a wavefront (AMD) or two warps (NVIDIA) and is a
 // multiple of every common SIMD width; the kernel may allow less (register pressure).
 inline constexpr std::size_t preferred_group_size = 64;
@@ -37,7 +46,7 @@ inline constexpr std::size_t preferred_group_size = 64;
 template <class Kernel>
 class opencl_engine {
     static constexpr program_source program_ = find_program(Kernel::name);
-    static_assert(program_.source != nullptr,
+    static_assert(has_program(Kernel::name),
                   "this structure has no OpenCL program: register it with voxray_add_structure (CMake)");
 
 public:
