@@ -1,7 +1,7 @@
 // The input formats the malformed-input test covers: valid samples built here (small,
 // so every mutant loads in microseconds), where each one's structure starts, and its
 // loader. A new format is one more function returning an input_format and one more
-// entry in all_formats(): for NAADF's .vxna, saved_structure_format<naadf>("vxna", ...).
+// entry in all_formats() (NAADF's .vxna is one: vxna_format).
 #pragma once
 #include <cstring>
 #include <filesystem>
@@ -14,6 +14,7 @@
 #include "mutations.hpp"
 #include "vox_bytes.hpp"
 #include "voxray/brickmap/brickmap.hpp"
+#include "voxray/naadf/serialize.hpp"
 #include "voxray/brickmap/serialize.hpp"
 #include "voxray/io/mesh_loader.hpp"
 #include "voxray/io/obj_reader.hpp"
@@ -96,6 +97,26 @@ inline input_format vxbm_format() {
         sum.words(w.data(), words);
         sum.bytes(b.data() + 48 + 4 * words, b.size() - 48 - 4 * words);
         std::memcpy(b.data() + 40, &sum.h, 8);
+    };
+    return f;
+}
+
+inline input_format vxna_format() {
+    auto f = saved_structure_format<naadf>(
+        "vxna", [](const naadf& s, const std::filesystem::path& p) { save(s, p); },
+        [](const std::filesystem::path& p) { (void)load_naadf(p); });
+    f.reseal = [](bytes& b) {  // as vxbm's: past the checksum to the content checks
+        if (b.size() < naadf_file_header_bytes) return;
+        std::uint64_t words;
+        std::memcpy(&words, b.data() + 8, 8);
+        if (words > (b.size() - naadf_file_header_bytes) / 4) return;
+        fnv64 sum;
+        sum.bytes(b.data(), 24);
+        std::vector<std::uint32_t> w(words);
+        if (words) std::memcpy(w.data(), b.data() + naadf_file_header_bytes, words * 4);
+        sum.words(w.data(), words);
+        sum.bytes(b.data() + naadf_file_header_bytes + 4 * words, b.size() - naadf_file_header_bytes - 4 * words);
+        std::memcpy(b.data() + 24, &sum.h, 8);
     };
     return f;
 }
@@ -215,6 +236,8 @@ inline input_format ply_format() {
 }
 
 // Every format the malformed-input test runs. Add a format here (one line).
-inline std::vector<input_format> all_formats() { return {vox_format(), obj_format(), ply_format(), vxbm_format()}; }
+inline std::vector<input_format> all_formats() {
+    return {vox_format(), obj_format(), ply_format(), vxbm_format(), vxna_format()};
+}
 
 }  // namespace voxray::test::malformed
