@@ -58,12 +58,6 @@ inline box3i cuboid_of(std::span<const std::uint32_t> w, glm::ivec3 p, const dec
     return b;
 }
 
-inline std::vector<glm::ivec3> solid_voxels(const voxel_model& m) {
-    std::vector<glm::ivec3> out;
-    m.for_each_voxel([&](glm::ivec3 p, std::uint8_t) { out.push_back(p); });
-    return out;
-}
-
 // Solid-voxel counts of every box of `world`, from a summed-volume table of the model.
 class solid_counts {
 public:

@@ -103,13 +103,18 @@ TEST(naadf_file, save_then_load_gives_the_same_structure_and_it_stays_editable) 
     EXPECT_EQ(loaded.stats().mixed_chunks, naadf(model).stats().mixed_chunks);
 }
 
-TEST(naadf_file, damaged_files_are_rejected_with_the_offset) {
+// The bytes of an edited structure's file.
+std::vector<unsigned char> edited_file() {
     voxel_model model;
-    naadf s = edited_structure(model);
     auto path = temp_file("good.vxna");
-    save(s, path);
-    const auto good = read_bytes(path);
+    save(edited_structure(model), path);
+    auto bytes = read_bytes(path);
     std::filesystem::remove(path);
+    return bytes;
+}
+
+TEST(naadf_file, damaged_files_are_rejected_with_the_offset) {
+    const auto good = edited_file();
     const std::uint64_t words = (good.size() - naadf_file_header_bytes - io::palette_bytes) / 4;
     auto w = [&](std::uint64_t i) { return *reinterpret_cast<const std::uint32_t*>(good.data() + naadf_file_header_bytes + 4 * i); };
 
@@ -168,11 +173,8 @@ TEST(naadf_file, damaged_files_are_rejected_with_the_offset) {
 // gives a structure that traces (and edits) like any other, or a voxray::error. Under
 // ASan + UBSan this is where a missed check would show as a bad read.
 TEST(naadf_file, random_damage_loads_cleanly_or_is_rejected) {
-    voxel_model model;
-    naadf s = edited_structure(model);
+    const auto good = edited_file();
     auto path = temp_file("fuzz.vxna");
-    save(s, path);
-    const auto good = read_bytes(path);
     const std::uint64_t words = (good.size() - naadf_file_header_bytes - io::palette_bytes) / 4;
     rng g(99);
     int loaded = 0, rejected = 0;
@@ -181,7 +183,7 @@ TEST(naadf_file, random_damage_loads_cleanly_or_is_rejected) {
         // Mostly the header and the cells (where the structure is), sometimes anywhere.
         std::uint64_t word = g.below(4) ? g.below(std::uint32_t(std::min<std::uint64_t>(words, 20000))) : g.below(std::uint32_t(words));
         std::uint32_t values[] = {0u, 1u, 0xFFFFFFFFu, 0x80000000u | g.below(1u << 30), 0x40000000u | g.below(300),
-                                  g.below(1u << 30), blob_word(bytes, word) ^ (1u << g.below(32))};
+                                  std::uint32_t(g.below(1u << 30)), blob_word(bytes, word) ^ (1u << g.below(32))};
         blob_word(bytes, word) = values[g.below(7)];
         reseal(bytes);
         write_bytes(path, bytes);

@@ -45,27 +45,7 @@ TEST(naadf_build, every_cell_matches_the_model_and_every_cuboid_is_empty) {
     // Straddles page, chunk and block boundaries, at negative coordinates too.
     voxel_model m = random_sparse(box3i{{-21, 240, -3}, {27, 275, 33}}, 400, 5);
     naadf s(m);
-    auto w = s.blob();
-    auto solid = solid_voxels(m);
-    box3i region = s.bounds();
-    std::uint64_t empty_cells = 0;
-    for (int z = region.min.z; z < region.max.z; ++z)
-        for (int y = region.min.y; y < region.max.y; ++y)
-            for (int x = region.min.x; x < region.max.x; ++x) {
-                glm::ivec3 p{x, y, z};
-                decoded_cell c = cell_at(w, p);
-                std::uint8_t material = m.get(p);
-                ASSERT_EQ(c.solid, material != 0) << x << " " << y << " " << z;
-                if (c.solid) {
-                    ASSERT_EQ(c.value & VX_NA_TYPE_MASK, material);
-                    continue;
-                }
-                ++empty_cells;
-                box3i b = cuboid_of(w, p, c);
-                ASSERT_TRUE(b.contains(p));
-                for (glm::ivec3 q : solid) ASSERT_FALSE(b.contains(q)) << "cuboid of " << x << " " << y << " " << z;
-            }
-    EXPECT_GT(empty_cells, 0u);
+    expect_cells_match(s.blob(), m, s.bounds(), "build");
 }
 
 TEST(naadf_build, distance_fields_reach_the_edges_of_their_cell) {

@@ -45,6 +45,7 @@
 #include "voxray/brickmap/brick_pool.hpp"
 #include "voxray/sync/change_log.hpp"
 #include "voxray/sync/dirty_set.hpp"
+#include "voxray/edit/region_shortcuts.hpp"
 #include "voxray/edit/regions.hpp"
 #include "voxray/brickmap/top_grid.hpp"
 #include "voxray/edit/world_growth.hpp"
@@ -66,7 +67,7 @@ template <class Payload, int E>
 struct brickmap_io;
 
 template <class Payload = std::uint8_t, int BrickEdge = 8>
-class brickmap : private top_grid {
+class brickmap : private top_grid, public region_shortcuts<brickmap<Payload, BrickEdge>, Payload> {
 public:
     using codec = brick_codec<Payload, BrickEdge>;
     using payload_type = Payload;
@@ -134,16 +135,7 @@ public:
     };
     // Same result as apply() of each edit in turn; threads share out bricks, not edits.
     void apply_batch(std::span<const edit> edits, unsigned threads = 1);
-    void fill_box(box3i b, Payload v, unsigned threads = 1) { apply(regions::box{b}, edit_op::fill, v, threads); }
-    void erase_box(box3i b, unsigned threads = 1) { apply(regions::box{b}, edit_op::erase, 0, threads); }
-    void paint_box(box3i b, Payload v, unsigned threads = 1) { apply(regions::box{b}, edit_op::paint, v, threads); }
-    void fill_sphere(glm::ivec3 c, int r, Payload v, unsigned threads = 1) {
-        apply(regions::sphere{c, r}, edit_op::fill, v, threads);
-    }
-    void erase_sphere(glm::ivec3 c, int r, unsigned threads = 1) { apply(regions::sphere{c, r}, edit_op::erase, 0, threads); }
-    void paint_sphere(glm::ivec3 c, int r, Payload v, unsigned threads = 1) {
-        apply(regions::sphere{c, r}, edit_op::paint, v, threads);
-    }
+    // fill_box, erase_sphere and the like: edit/region_shortcuts.hpp.
     // radius 0: a one-voxel-thick 3D DDA line (regions::line_voxels); else a capsule.
     void apply_line(glm::ivec3 a, glm::ivec3 b, int radius, edit_op op, Payload v, unsigned threads = 1);
     // Copies src to src + offset (overlap allowed: the source is read first).

@@ -29,6 +29,7 @@
 #include "voxray/core/box.hpp"
 #include "voxray/core/word_range.hpp"
 #include "voxray/edit/edit_op.hpp"
+#include "voxray/edit/region_shortcuts.hpp"
 #include "voxray/edit/regions.hpp"
 #include "voxray/model/palette.hpp"
 #include "voxray/model/voxel_model.hpp"
@@ -53,7 +54,7 @@ struct naadf_refine_progress {
     bool done() const { return pages_left == 0 && !table_left; }
 };
 
-class naadf {
+class naadf : public region_shortcuts<naadf, std::uint8_t> {
 public:
     static constexpr std::string_view name = "naadf";
     using kernel = kernels::naadf_kernel;
@@ -87,16 +88,7 @@ public:
     }
     // The edits in order, as apply() of each in turn; each chunk is rebuilt once.
     void apply_batch(std::span<const edit> edits, unsigned threads = 1);
-    void fill_box(box3i b, payload_type v, unsigned threads = 1) { apply(regions::box{b}, edit_op::fill, v, threads); }
-    void erase_box(box3i b, unsigned threads = 1) { apply(regions::box{b}, edit_op::erase, 0, threads); }
-    void paint_box(box3i b, payload_type v, unsigned threads = 1) { apply(regions::box{b}, edit_op::paint, v, threads); }
-    void fill_sphere(glm::ivec3 c, int r, payload_type v, unsigned threads = 1) {
-        apply(regions::sphere{c, r}, edit_op::fill, v, threads);
-    }
-    void erase_sphere(glm::ivec3 c, int r, unsigned threads = 1) { apply(regions::sphere{c, r}, edit_op::erase, 0, threads); }
-    void paint_sphere(glm::ivec3 c, int r, payload_type v, unsigned threads = 1) {
-        apply(regions::sphere{c, r}, edit_op::paint, v, threads);
-    }
+    // fill_box, erase_sphere and the like: edit/region_shortcuts.hpp.
     // radius 0: a one-voxel-thick 3D DDA line (regions::line_voxels); else a capsule.
     void apply_line(glm::ivec3 a, glm::ivec3 b, int radius, edit_op op, payload_type v, unsigned threads = 1);
     // Copies src to src + offset (overlap allowed: the source is read first). replace:
@@ -160,7 +152,16 @@ public:
 
 private:
     friend struct naadf_io;
-    struct edited_chunk;
+    // One chunk between its parallel rebuild and its commit.
+    struct edited_chunk {
+        glm::ivec3 origin{0};  // world position of its voxel (0,0,0): a multiple of 16
+        bool changed = false;
+        bool empty = false;
+        std::int64_t delta = 0;  // solid voxels gained
+        naadf_detail::built_chunk built;
+        std::vector<std::uint32_t> hashes;                // per group of built
+        std::vector<naadf_detail::voxel_group> fielded;   // per group: as the blob holds it
+    };
 
     // Mutexes are not movable; a moved naadf gets a fresh one.
     struct locks {

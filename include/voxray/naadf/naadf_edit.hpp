@@ -28,17 +28,6 @@
 
 namespace voxray {
 
-// One chunk between its parallel rebuild and its commit.
-struct naadf::edited_chunk {
-    glm::ivec3 origin{0};  // world position of its voxel (0,0,0): a multiple of 16
-    bool changed = false;
-    bool empty = false;
-    std::int64_t delta = 0;  // solid voxels gained
-    naadf_detail::built_chunk built;
-    std::vector<std::uint32_t> hashes;                // per group of built
-    std::vector<naadf_detail::voxel_group> fielded;   // per group: as the blob holds it
-};
-
 inline naadf::naadf(const voxel_model& model, naadf_options options) : outside_(options.outside) {
     auto start = std::chrono::steady_clock::now();
     auto built = naadf_detail::build(model, options);
