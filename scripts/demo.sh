@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # The main job: install what is missing, build, render the built-in scene on every
 # backend to PNG, run the benchmark matrix (every structure and baseline: Embree, NanoVDB)
-# into a results file and print its table, and the brickmap's editing figures.
+# into a results file and print its table, and the editing figures of brickmap and NAADF.
 set -euo pipefail
 source "$(dirname "${BASH_SOURCE[0]}")/setup.sh"
 install_packages
@@ -29,8 +29,10 @@ echo "== benchmark matrix: $SCENE, every structure and baseline x backend x ray 
     { echo "bench: some rows disagree or failed (see below and $OUT/bench.log)"; status=1; }
 /usr/bin/python3 "$ROOT/scripts/plot_bench.py" "$OUT/results.jsonl" --out "$OUT" >/dev/null
 cat "$OUT/table.md"
-echo "== brickmap editing: 50 balls of radius 25 per frame, 2 threads, then a one-voxel edit (vulkan)"
-"$VOXRAY" bench "$SCENE" --structure brickmap --backend vulkan --edits spheres --threads 2 2>/dev/null | tail -n1
-"$VOXRAY" bench "$SCENE" --structure brickmap --backend vulkan --edits voxel 2>/dev/null | tail -n1
+for structure in brickmap naadf; do
+    echo "== $structure editing: 50 balls of radius 25 per frame, 2 threads, then a one-voxel edit (vulkan)"
+    "$VOXRAY" bench "$SCENE" --structure "$structure" --backend vulkan --edits spheres --threads 2 2>/dev/null | tail -n1
+    "$VOXRAY" bench "$SCENE" --structure "$structure" --backend vulkan --edits voxel 2>/dev/null | tail -n1
+done
 echo "== images, results.jsonl, plots (mrays.png, speed_vs_memory.png, steps.png) and table.md in $OUT"
 exit ${status}
