@@ -9,6 +9,7 @@
 #pragma once
 #include <algorithm>
 #include <cstdint>
+#include <limits>
 #include <vector>
 
 #include "voxray/core/blob.hpp"
@@ -55,7 +56,11 @@ namespace naadf_detail {
 // A page table beyond this many entries (1 GiB) is refused: worlds of 65536^3 voxels need 2^24.
 inline constexpr std::uint64_t max_page_table_entries = std::uint64_t(1) << 28;
 
-inline int floor_div(int a, int b) { return a >= 0 ? a / b : -((-a + b - 1) / b); }
+// a / b rounded down (b > 0), for every int a (INT_MIN included: 64-bit inside).
+inline int floor_div(int a, int b) {
+    std::int64_t wide = a;
+    return int(wide >= 0 ? wide / b : -((-wide + b - 1) / b));
+}
 
 // Where the cell grid lies: aligned to pages in world coordinates, so that model chunks
 // are chunks; the walk's voxel (0,0,0) is the model's min corner, at grid coordinate shift.
@@ -71,6 +76,11 @@ struct grid_placement {
         shift = b.min - origin;
         // In 64 bits: an extent near 2^31 would overflow int here.
         glm::i64vec3 n = (glm::i64vec3(shift) + glm::i64vec3(b.extent()) + std::int64_t(edge - 1)) / std::int64_t(edge);
+        for (int a = 0; a < 3; ++a)
+            if (std::int64_t(origin[a]) + n[a] * edge - 1 > std::numeric_limits<int>::max())
+                fail("naadf: a world reaching voxel ", std::int64_t(b.max[a]) - 1, " on axis ", "xyz"[a],
+                     " ends past 32-bit coordinates once its last page is whole (pages end at ",
+                     std::int64_t(origin[a]) + n[a] * edge, ")");
         pages = glm::ivec3(n);
         page_count = std::uint64_t(n.x) * std::uint64_t(n.y) * std::uint64_t(n.z);
         if (page_count > max_page_table_entries)
