@@ -71,6 +71,7 @@ inline naadf_refine_progress naadf::refine(std::size_t budget, unsigned threads)
         }
     });
     for (std::size_t k = 0; k < n; ++k) {
+        if (changed[k].empty()) continue;  // (a page that is no longer mixed has no array)
         std::uint32_t* array = store_.chunk_array(VX_NA_PAYLOAD(*store_.page_cell(pages[k].slot)));
         for (std::uint32_t i : changed[k]) store_.mark(array + i, 1);
     }
