@@ -44,6 +44,7 @@
 #include "voxray/brickmap/brick_codec.hpp"
 #include "voxray/brickmap/brick_pool.hpp"
 #include "voxray/sync/change_log.hpp"
+#include "voxray/sync/sync_frame.hpp"
 #include "voxray/sync/dirty_set.hpp"
 #include "voxray/edit/region_shortcuts.hpp"
 #include "voxray/edit/regions.hpp"
@@ -151,17 +152,8 @@ public:
         settle_locked();
     }
 
-    // A consistent view of the blob while other threads edit: writers wait (the exclusive
-    // lock) for as long as the frame lives, so upload or copy what you need and let it go.
-    // `ranges`: the words changed after the generation asked for (the whole blob when it
-    // was re-laid out since); `generation`: what to ask for next time.
-    struct sync_frame {
-        std::unique_lock<std::shared_mutex> lock;
-        std::span<const std::uint32_t> blob;
-        std::vector<word_range> ranges;
-        std::uint64_t generation = 0;
-        std::uint64_t voxels = 0;
-    };
+    // A consistent view of the blob while other threads edit (sync/sync_frame.hpp).
+    using sync_frame = voxray::sync_frame;
     // The blob as it is (no ranges) and its generation: what a new consumer starts from.
     sync_frame snapshot() const {
         std::unique_lock lock(locks_.grow);

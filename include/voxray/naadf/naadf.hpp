@@ -37,6 +37,7 @@
 #include "voxray/naadf/cell_store.hpp"
 #include "voxray/naadf/field_upkeep.hpp"
 #include "voxray/sync/change_log.hpp"
+#include "voxray/sync/sync_frame.hpp"
 
 #define VOXRAY_KERNEL_NAME naadf
 #define VOXRAY_KERNEL_FILE "voxray/naadf/kernel.h"
@@ -108,13 +109,7 @@ public:
     }
 
     // ---- sync (the brickmap's interface; see tracer.hpp) ----
-    struct sync_frame {
-        std::unique_lock<std::shared_mutex> lock;
-        std::span<const std::uint32_t> blob;
-        std::vector<word_range> ranges;
-        std::uint64_t generation = 0;
-        std::uint64_t voxels = 0;
-    };
+    using sync_frame = voxray::sync_frame;  // sync/sync_frame.hpp
     sync_frame snapshot() const {
         std::unique_lock lock(locks_.m);
         commit_locked();
