@@ -1,9 +1,10 @@
 # Structure registration and the portable kernels' build steps.
 #
-#   voxray_add_structure(<name> [TYPE <C++ type>])
+#   voxray_add_structure(<name> [TYPE <C++ type>...])
 #
 # registers the structure whose files are include/voxray/<name>/ (kernel.h, layout.h,
-# <name>.hpp; TYPE defaults to voxray::<name>). One call per structure (top-level
+# <name>.hpp; TYPE defaults to voxray::<name>; several types share the one kernel, as the
+# DAG's exact and colour-block attribute encodings do). One call per structure (top-level
 # CMakeLists.txt) does everything a backend needs: it flattens the kernel into its own
 # OpenCL C program and its own GLSL shaders (one per trace mode), compiles those to SPIR-V,
 # checks the OpenCL C with clang where clang exists (a kernel error shows up without a
@@ -12,7 +13,7 @@
 # The CPU side needs no CMake: the host header includes kernels/cpu_kernel.inc.
 
 # The shared dialect every kernel builds on, in dependency order.
-set(VOXRAY_KERNEL_COMMON kernels/prelude.h kernels/ray.h kernels/dda.h kernels/stack.h)
+set(VOXRAY_KERNEL_COMMON kernels/prelude.h kernels/ray.h kernels/dda.h kernels/stack.h kernels/bits.h)
 set(VOXRAY_GENERATED ${PROJECT_BINARY_DIR}/generated)
 file(MAKE_DIRECTORY ${VOXRAY_GENERATED}/voxray/generated ${VOXRAY_GENERATED}/voxray/shaders ${VOXRAY_GENERATED}/opencl ${VOXRAY_GENERATED}/vulkan)
 find_program(VOXRAY_CLANG NAMES clang clang-16 clang-15 clang-14 DOC "clang, to check OpenCL C kernels at build time")
@@ -51,7 +52,7 @@ function(voxray_kernel_files out)
 endfunction()
 
 function(voxray_add_structure name)
-    cmake_parse_arguments(arg "" "TYPE" "" ${ARGN})
+    cmake_parse_arguments(arg "" "" "TYPE" ${ARGN})
     if(NOT arg_TYPE)
         set(arg_TYPE "voxray::${name}")
     endif()

@@ -1,0 +1,89 @@
+// Aokana's colour blocks: the colours of the solid voxels in depth-first order, cut into
+// runs whose colours all lie within `max_error` (per channel, colours in [0, 1]) of the
+// run's average; a run is stored as its start index and its average colour (RGBA8), and a
+// binary search over the starts finds a voxel's run (svdag/kernel.h, vx_sv_attribute).
+// Lossy, so for looks only: game attributes use the exact encoding.
+#pragma once
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "voxray/model/palette.hpp"
+
+namespace voxray::svdag_build {
+
+inline std::uint32_t pack_rgba(rgba c) {
+    return std::uint32_t(c.r) | (std::uint32_t(c.g) << 8) | (std::uint32_t(c.b) << 16) | (std::uint32_t(c.a) << 24);
+}
+
+// The largest channel difference, in [0, 1], between a packed colour and a palette colour.
+inline double colour_difference(std::uint32_t packed, rgba c) {
+    const int channel[3] = {c.r, c.g, c.b};
+    double d = 0;
+    for (int k = 0; k < 3; ++k) d = std::max(d, std::abs(double(int((packed >> (8 * k)) & 255u) - channel[k])) / 255.0);
+    return d;
+}
+
+// What a block's colour may be off by: the block error, plus the rounding of its
+// average to 8 bits.
+inline double colour_tolerance(float max_error) { return double(max_error) + 0.5 / 255.0 + 1e-9; }
+
+struct colour_blocks {
+    std::vector<std::uint32_t> starts;   // first depth-first index of each block, ascending
+    std::vector<std::uint32_t> colours;  // RGBA8 (pack_rgba) average of each block
+    double max_error = 0, mean_error = 0;  // per voxel, the largest channel difference in [0, 1]
+};
+
+// A block grows while every colour in it stays within max_error of the running average
+// (tracked through the per-channel min and max, so each voxel costs O(1)).
+inline colour_blocks encode_colour_blocks(std::span<const std::uint8_t> payload, const palette& pal, float max_error) {
+    colour_blocks out;
+    auto channels = [&](std::uint8_t index) {
+        rgba c = pal[index].colour;
+        return std::array<float, 3>{c.r / 255.0f, c.g / 255.0f, c.b / 255.0f};
+    };
+    std::array<double, 3> sum{}, lo{}, hi{};
+    std::size_t length = 0;
+    auto close_block = [&] {
+        if (length == 0) return;
+        rgba avg;
+        avg.r = std::uint8_t(std::lround(sum[0] / double(length) * 255.0));
+        avg.g = std::uint8_t(std::lround(sum[1] / double(length) * 255.0));
+        avg.b = std::uint8_t(std::lround(sum[2] / double(length) * 255.0));
+        out.colours.push_back(pack_rgba(avg));
+    };
+    for (std::size_t i = 0; i < payload.size(); ++i) {
+        auto c = channels(payload[i]);
+        bool fits = length > 0;
+        for (int k = 0; k < 3 && fits; ++k) {
+            double avg = (sum[k] + c[k]) / double(length + 1);
+            fits = std::max<double>(hi[k], c[k]) - avg <= max_error && avg - std::min<double>(lo[k], c[k]) <= max_error;
+        }
+        if (!fits) {
+            close_block();
+            out.starts.push_back(std::uint32_t(i));
+            sum = {}, length = 0;
+            for (int k = 0; k < 3; ++k) lo[k] = hi[k] = c[k];
+        }
+        for (int k = 0; k < 3; ++k) sum[k] += c[k], lo[k] = std::min<double>(lo[k], c[k]), hi[k] = std::max<double>(hi[k], c[k]);
+        ++length;
+    }
+    close_block();
+
+    // The error each voxel ends up with, after the average is rounded to 8 bits.
+    double total = 0;
+    std::size_t block = 0;
+    for (std::size_t i = 0; i < payload.size(); ++i) {
+        while (block + 1 < out.starts.size() && out.starts[block + 1] <= i) ++block;
+        double error = colour_difference(out.colours[block], pal[payload[i]].colour);
+        out.max_error = std::max(out.max_error, error);
+        total += error;
+    }
+    out.mean_error = payload.empty() ? 0.0 : total / double(payload.size());
+    return out;
+}
+
+}  // namespace voxray::svdag_build
