@@ -15,7 +15,7 @@ status=0
 
 echo "== render $SCENE on every backend"
 for backend in cpu cpu-scalar opencl vulkan; do
-    for structure in dense brickmap naadf; do
+    for structure in dense brickmap naadf svdag; do
         "$VOXRAY" render "$SCENE" --structure "$structure" --backend "$backend" --width 960 --height 540 \
             --out "$OUT/terrain_${structure}_$backend.png"
     done

@@ -97,6 +97,7 @@ nlohmann::json measure(const bench_options& o, slot& structure, traceable& engin
     };
     for (int w = 0; w < o.warmup; ++w) trace();
     std::string limitation = structure.limitation();
+    auto colours = structure.colour_tolerance();  // hits with colours: within it of the palette's
     std::vector<double> mrays;
     std::uint64_t mismatches = 0, ties = 0, limited = 0;
     for (int r = 0; r < o.runs; ++r) {
@@ -107,7 +108,8 @@ nlohmann::json measure(const bench_options& o, slot& structure, traceable& engin
         mrays.push_back(double(set.rays.size()) / s * 1e-6);
         for (std::size_t i = 0; i < set.rays.size(); ++i) {
             auto verdict = set.shadow ? judge_any_hit(set.rays[i], set.expected[i], hits[i], reference)
-                                      : compare_hits(set.rays[i], set.expected[i], hits[i]);
+                           : colours ? compare_colour_hits(set.rays[i], set.expected[i], hits[i], model.palette(), *colours)
+                                     : compare_hits(set.rays[i], set.expected[i], hits[i]);
             if (verdict == agreement::mismatch && !limitation.empty() && starts_inside_solid(set.rays[i], model)) ++limited;
             else mismatches += verdict == agreement::mismatch;
             ties += verdict == agreement::tie;
@@ -125,6 +127,8 @@ nlohmann::json measure(const bench_options& o, slot& structure, traceable& engin
     // A CPU backend's cost per step of one ray (a device's threads are not this machine's cores).
     double cycles = threads > 0 && clock > 0 && steps > 0 ? threads * clock / (median * 1e6 * steps) : NAN;
     std::uint64_t voxels = model.voxel_count();
+    nlohmann::json figures = nlohmann::json::object();
+    for (auto& [name, value] : structure.figures()) figures[name] = value;
     return {{"steps_per_ray", steps},
             {"cycles_per_ray_step", cycles},
             {"threads", threads},
@@ -136,6 +140,7 @@ nlohmann::json measure(const bench_options& o, slot& structure, traceable& engin
             {"bytes", structure.bytes()},
             {"bytes_per_voxel", voxels ? double(structure.bytes()) / double(voxels) : NAN},
             {"build_seconds", structure.build_seconds()},
+            {"figures", figures},
             {"validated_rays", set.rays.size() * std::size_t(o.runs)},
             {"mismatches", mismatches},
             {"ties", ties},

@@ -62,6 +62,7 @@ int check(const check_options& o) {
     std::vector<std::shared_ptr<slot>> structures;
     std::vector<std::unique_ptr<traceable>> tracers;
     std::vector<std::pair<std::string, std::string>> labels;
+    std::vector<std::shared_ptr<slot>> slot_of;  // per pair
     std::printf("%-14s %-11s %12s %10s\n", "structure", "backend", "mismatches", "ties");
     for (auto& s : split_names(o.structures)) {
         std::fprintf(stderr, "building %s ...\n", s.c_str());
@@ -72,6 +73,7 @@ int check(const check_options& o) {
                 continue;
             }
             tracers.push_back(structures.back()->trace_on(b));
+            slot_of.push_back(structures.back());
             labels.emplace_back(s, b);
         }
     }
@@ -92,8 +94,10 @@ int check(const check_options& o) {
         tracers[p]->closest_hit(rays, hits);
         agreement_counts counts;
         int shown = 0;
+        auto tolerance = slot_of[p]->colour_tolerance();  // hits with colours: within it of the palette's
         for (std::size_t i = 0; i < rays.size(); ++i) {
-            auto verdict = compare_hits(rays[i], reference[i], hits[i]);
+            auto verdict = tolerance ? compare_colour_hits(rays[i], reference[i], hits[i], model.palette(), *tolerance)
+                                     : compare_hits(rays[i], reference[i], hits[i]);
             counts.add(verdict);
             if (verdict == agreement::mismatch && shown++ < 3) print_mismatch(i, rays[i], reference[i], hits[i]);
         }

@@ -6,8 +6,10 @@
 #pragma once
 #include <chrono>
 #include <memory>
+#include <optional>
 #include <span>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "voxray/core/type_list.hpp"
@@ -96,6 +98,12 @@ public:
     }
     // How long the last apply_edits spent regrowing distance fields (NAADF's refine).
     virtual double last_refine_seconds() const { return 0; }
+    // Hits carry RGBA8 colours instead of palette indices (the DAG's colour blocks): how
+    // far, per channel in [0, 1], a colour may be from the voxel's palette colour.
+    virtual std::optional<double> colour_tolerance() const { return std::nullopt; }
+    // Structure-specific figures (name, value) beside size and build time (the DAG's
+    // geometry and attribute bytes, merging ratio, colour error).
+    virtual std::vector<std::pair<const char*, double>> figures() const { return {}; }
 };
 
 template <class Backend, class Structure>
@@ -157,6 +165,14 @@ public:
 
     std::shared_ptr<Structure> structure;
     double last_refine_seconds() const override { return refine_seconds; }
+    std::optional<double> colour_tolerance() const override {
+        if constexpr (requires { Structure::material_is_colour; }) return structure->colour_tolerance();
+        else return std::nullopt;
+    }
+    std::vector<std::pair<const char*, double>> figures() const override {
+        if constexpr (requires { structure->stats().figures(); }) return structure->stats().figures();
+        else return {};
+    }
 
     std::vector<word_range> ranges;  // dirty ranges of the last apply_edits
     double refine_seconds = 0;       // of the last apply_edits (part of its time)

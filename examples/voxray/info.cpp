@@ -31,6 +31,7 @@ command add_info(CLI::App& parent) {
             auto s = build_structure(name, model);
             double per_voxel = model.voxel_count() ? double(s->bytes()) / double(model.voxel_count()) : 0.0;
             std::printf("%-14s %14zu %12.2f %10.3f\n", name.c_str(), s->bytes(), per_voxel, s->build_seconds());
+            for (auto& [figure, value] : s->figures()) std::printf("    %-20s %.6g\n", figure, value);
         }
         return 0;
     }};

@@ -55,8 +55,10 @@ int render(const render_options& o) {
     engine->any_hit(shadow_set, shadow);
 
     std::vector<std::uint8_t> rgb(rays.size() * 3);
+    bool colours = structure->colour_tolerance().has_value();  // hits carry colours, not palette indices
     for (std::size_t i = 0; i < rays.size(); ++i) {
-        glm::vec3 c = hits[i].is_hit() ? shade(model.palette(), hits[i], sun, shadow[i].is_hit())
+        glm::vec3 albedo_of_hit = colours ? albedo_rgba8(hits[i]) : albedo(model.palette(), hits[i]);
+        glm::vec3 c = hits[i].is_hit() ? shade(albedo_of_hit, hits[i], sun, shadow[i].is_hit())
                                        : sky(rays[i].direction, model.up_axis);
         auto px = to_srgb8(c);
         std::copy(px.begin(), px.end(), rgb.begin() + i * 3);

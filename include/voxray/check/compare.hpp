@@ -21,6 +21,7 @@
 
 #include "voxray/core/hit.hpp"
 #include "voxray/core/ray.hpp"
+#include "voxray/model/palette.hpp"
 
 namespace voxray {
 
@@ -69,6 +70,19 @@ inline agreement compare_hits(const ray& r, const hit& reference, const hit& oth
         return reference.normal == other.normal ? agreement::same : agreement::tie;
     }
     return agreement::tie;
+}
+
+// For a structure whose hits carry RGBA8 colours instead of palette indices (the sparse
+// voxel DAG's colour blocks): the geometry is judged as above, and on the same voxel the
+// colour must lie within `tolerance` (per channel, in [0, 1]) of the palette colour of the
+// reference's material, or the hit is a mismatch.
+inline agreement compare_colour_hits(const ray& r, const hit& reference, hit other, const palette& p, double tolerance) {
+    if (reference.is_hit() && other.is_hit() && reference.voxel == other.voxel) {
+        if (colour_difference(other.material, p[std::uint8_t(reference.material)].colour) > tolerance)
+            return agreement::mismatch;
+        other.material = reference.material;
+    }
+    return compare_hits(r, reference, other);
 }
 
 struct agreement_counts {

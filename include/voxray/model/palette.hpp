@@ -1,6 +1,7 @@
 // A palette of 256 entries, as in MagicaVoxel: index 0 means "empty", 1..255 are
 // colours with a material. Voxels store only the index.
 #pragma once
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdint>
@@ -44,6 +45,20 @@ struct rgba {
     std::uint8_t r = 0, g = 0, b = 0, a = 255;
     bool operator==(const rgba&) const = default;
 };
+
+// A colour as one word, r | g<<8 | b<<16 | a<<24 (what a structure that stores colours
+// rather than palette indices returns as a hit's material).
+inline std::uint32_t pack_rgba(rgba c) {
+    return std::uint32_t(c.r) | (std::uint32_t(c.g) << 8) | (std::uint32_t(c.b) << 16) | (std::uint32_t(c.a) << 24);
+}
+
+// The largest RGB channel difference, in [0, 1], between a packed colour and a colour.
+inline double colour_difference(std::uint32_t packed, rgba c) {
+    const int channel[3] = {c.r, c.g, c.b};
+    double d = 0;
+    for (int k = 0; k < 3; ++k) d = std::max(d, std::abs(double(int((packed >> (8 * k)) & 255u) - channel[k])) / 255.0);
+    return d;
+}
 
 struct palette_entry {
     rgba colour;

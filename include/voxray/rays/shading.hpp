@@ -35,10 +35,19 @@ inline glm::vec3 albedo(const palette& p, const hit& h) {
     return glm::vec3(c.r, c.g, c.b) / 255.0f;
 }
 
+// The colour of a hit whose material is an RGBA8 colour (r | g<<8 | b<<16 | a<<24), as
+// the sparse voxel DAG's colour blocks give, linear in [0, 1].
+inline glm::vec3 albedo_rgba8(const hit& h) {
+    return glm::vec3(h.material & 255u, (h.material >> 8) & 255u, (h.material >> 16) & 255u) / 255.0f;
+}
+
 // Lambert with 30% ambient; `in_shadow`: the shadow ray towards `to_sun` hit something.
-inline glm::vec3 shade(const palette& p, const hit& h, glm::vec3 to_sun, bool in_shadow) {
+inline glm::vec3 shade(glm::vec3 albedo, const hit& h, glm::vec3 to_sun, bool in_shadow) {
     float lambert = std::max(0.0f, glm::dot(face_normal(h.normal), to_sun));
-    return albedo(p, h) * (0.3f + 0.7f * (in_shadow ? 0.0f : lambert));
+    return albedo * (0.3f + 0.7f * (in_shadow ? 0.0f : lambert));
+}
+inline glm::vec3 shade(const palette& p, const hit& h, glm::vec3 to_sun, bool in_shadow) {
+    return shade(albedo(p, h), h, to_sun, in_shadow);
 }
 
 // Pale at the horizon, blue overhead.

@@ -11,6 +11,7 @@
 #include <array>
 #include <bit>
 #include <cstdint>
+#include <utility>
 #include <vector>
 
 #include "voxray/core/blob.hpp"
@@ -43,6 +44,22 @@ struct svdag_stats {
     std::uint64_t colour_blocks = 0;
     double colour_error_max = 0, colour_error_mean = 0;  // colour blocks against the exact colours
     double dedup_ratio() const { return dag_nodes ? double(octree_nodes) / double(dag_nodes) : 1.0; }
+    // The figures `voxray info` and `voxray bench` report beside every structure's size.
+    std::vector<std::pair<const char*, double>> figures() const {
+        std::vector<std::pair<const char*, double>> f = {
+            {"depth", depth},
+            {"geometry_bytes", double(geometry_bytes)},
+            {"attribute_bytes", double(attribute_bytes)},
+            {"octree_nodes", double(octree_nodes)},
+            {"dag_nodes", double(dag_nodes)},
+            {"dedup_ratio", dedup_ratio()}};
+        if (colour_blocks) {
+            f.push_back({"colour_blocks", double(colour_blocks)});
+            f.push_back({"colour_error_max", colour_error_max});
+            f.push_back({"colour_error_mean", colour_error_mean});
+        }
+        return f;
+    }
 };
 
 namespace svdag_build {

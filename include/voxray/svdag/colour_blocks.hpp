@@ -15,18 +15,6 @@
 
 namespace voxray::svdag_build {
 
-inline std::uint32_t pack_rgba(rgba c) {
-    return std::uint32_t(c.r) | (std::uint32_t(c.g) << 8) | (std::uint32_t(c.b) << 16) | (std::uint32_t(c.a) << 24);
-}
-
-// The largest channel difference, in [0, 1], between a packed colour and a palette colour.
-inline double colour_difference(std::uint32_t packed, rgba c) {
-    const int channel[3] = {c.r, c.g, c.b};
-    double d = 0;
-    for (int k = 0; k < 3; ++k) d = std::max(d, std::abs(double(int((packed >> (8 * k)) & 255u) - channel[k])) / 255.0);
-    return d;
-}
-
 // What a block's colour may be off by: the block error, plus the rounding of its
 // average to 8 bits.
 inline double colour_tolerance(float max_error) { return double(max_error) + 0.5 / 255.0 + 1e-9; }

@@ -32,6 +32,7 @@ public:
     void build(const voxel_model& model, svdag_options options = {}) {
         auto start = std::chrono::steady_clock::now();
         auto built = svdag_build::build(model, options);
+        options_ = options;
         words_ = std::move(built.words);
         stats_ = built.stats;
         bounds_ = model.bounds();
@@ -46,9 +47,11 @@ public:
     double build_seconds() const { return build_seconds_; }
     // Depth, node counts before and after merging, geometry and attribute bytes, colour error.
     const svdag_stats& stats() const { return stats_; }
+    const svdag_options& options() const { return options_; }
 
 private:
     blob_words words_;
+    svdag_options options_;
     svdag_stats stats_;
     box3i bounds_;
     std::uint64_t voxel_count_ = 0;
@@ -69,6 +72,9 @@ public:
     // options.colour_error is the block error (0.05 by default); the encoding is always blocks.
     explicit svdag_colours(const voxel_model& model, svdag_options options = {})
         : svdag(model, with_blocks(options)) {}
+
+    // How far a hit's colour may be from its voxel's palette colour, per channel in [0, 1].
+    double colour_tolerance() const { return svdag_build::colour_tolerance(options().colour_error); }
 
 private:
     static svdag_options with_blocks(svdag_options o) {
