@@ -65,25 +65,39 @@ VX_FN vx_sv_state vx_svdag_begin(vx_svdag g, vx_ray r) {
     return s;
 }
 
+/* Descents per step: a fresh ray starts at the root, D - 2 levels above its leaf, so each
+ * step takes up to this many levels at once (lanes that need fewer are masked; a step that
+ * only descended is one of these loops, not a whole step's overhead per level). */
+#define VX_SV_DESCENTS 3
+
 /* One step of every live lane (see the top comment). */
 VX_FN vx_sv_state vx_svdag_step(VX_BLOB blob, vx_svdag g, vx_sv_state s) {
     vx_u32 one = vx_u32_splat(1u);
     vx_mask live = s.w.status == VX_STATUS_ACTIVE;
     vx_i32 gx = s.w.cx + g.shx, gy = s.w.cy + g.shy, gz = s.w.cz + g.shz;
     vx_u32 ux = vx_i2u(gx), uy = vx_i2u(gy), uz = vx_i2u(gz);
-    vx_mask leaf = live && s.level == g.depth - VX_SV_LEAF_EDGE_BITS;
-    vx_mask inner = live && !leaf;
+    int leaf_depth = g.depth - VX_SV_LEAF_EDGE_BITS;
 
-    /* Interior node: the octant's child, when present, is the next node down. */
-    vx_u32 child_bit = vx_i2u(g.depth - 1 - s.level);
-    vx_u32 octant = VX_SV_OCTANT(ux, uy, uz, child_bit);
-    vx_u32 mask = vx_gather_masked(blob, inner, s.node) & VX_SV_NODE_MASK_BITS;
-    vx_mask present = inner && ((mask >> octant) & 1u) != 0u;
-    vx_u32 child = vx_gather_masked(blob, present,
-                                    s.node + VX_SV_NODE_CHILDREN + vx_popcount(VX_SV_BELOW(mask, octant, one)));
-    vx_stack_store(VX_ADDR(s.path), s.level + 1, child, present);
-    s.node = vx_sel(present, child, s.node);
-    s.level = vx_sel(present, s.level + 1, s.level);
+    /* Interior nodes: the octant's child, when present, is the next node down; an absent
+     * one blocks the lane, which then leaves the octant's empty cube below. */
+    vx_mask blocked = live && !live; /* no lane */
+    vx_i32 child_size = vx_i32_splat(1);
+    for (int k = 0; k < VX_SV_DESCENTS; ++k) {
+        vx_mask inner = live && !blocked && s.level < leaf_depth;
+        if (!vx_any(inner)) break;
+        vx_u32 child_bit = vx_i2u(g.depth - 1 - s.level);
+        vx_u32 octant = VX_SV_OCTANT(ux, uy, uz, child_bit);
+        vx_u32 mask = vx_gather_masked(blob, inner, s.node) & VX_SV_NODE_MASK_BITS;
+        vx_mask present = inner && ((mask >> octant) & 1u) != 0u;
+        vx_u32 child = vx_gather_masked(blob, present,
+                                        s.node + VX_SV_NODE_CHILDREN + vx_popcount(VX_SV_BELOW(mask, octant, one)));
+        vx_stack_store(VX_ADDR(s.path), s.level + 1, child, present);
+        s.node = vx_sel(present, child, s.node);
+        s.level = vx_sel(present, s.level + 1, s.level);
+        blocked = blocked || (inner && !present);
+        child_size = vx_sel(inner && !present, vx_u2i(one << child_bit), child_size);
+    }
+    vx_mask leaf = live && s.level == leaf_depth;
 
     /* Leaf: the voxel's bit. */
     vx_u32 i = VX_SV_LEAF_BIT(ux, uy, uz);
@@ -92,9 +106,10 @@ VX_FN vx_sv_state vx_svdag_step(VX_BLOB blob, vx_svdag g, vx_sv_state s) {
     s.w.status = vx_sel(solid, VX_STATUS_HIT, s.w.status);
     vx_mask empty_quad = leaf && (word & VX_SV_QUAD_BITS(ux, uy, one)) == 0u;
 
-    /* Empty: leave the cube (an absent octant, an empty quad, or the voxel). */
-    vx_mask go = (inner && !present) || (leaf && !solid);
-    vx_i32 size = vx_sel(inner, vx_u2i(one << child_bit), vx_sel(empty_quad, vx_i32_splat(2), vx_i32_splat(1)));
+    /* Empty: leave the cube (an absent octant, an empty quad, or the voxel). Lanes still
+     * descending neither hit nor move. */
+    vx_mask go = blocked || (leaf && !solid);
+    vx_i32 size = vx_sel(blocked, child_size, vx_sel(empty_quad, vx_i32_splat(2), vx_i32_splat(1)));
     vx_i32 lox = (gx & (0 - size)) - g.shx, loy = (gy & (0 - size)) - g.shy, loz = (gz & (0 - size)) - g.shz;
     s.w = vx_dda_leave_box(s.w, s.dx, s.dy, s.dz, lox, loy, loz, lox + size, loy + size, loz + size, go);
     vx_mask outside = s.w.cx < 0 || s.w.cy < 0 || s.w.cz < 0 || s.w.cx >= g.ex || s.w.cy >= g.ey || s.w.cz >= g.ez;
@@ -126,6 +141,7 @@ VX_FN vx_u32 vx_sv_dfs_index(VX_BLOB blob, vx_svdag g, vx_u32 ux, vx_u32 uy, vx_
         vx_u32 slot = vx_popcount(VX_SV_BELOW(mask, octant, one));
         for (uint k = 0u; k < 7u; ++k) {
             vx_mask before = m && k < slot;
+            if (!vx_any(before)) break;
             vx_u32 sibling = vx_gather_masked(blob, before, node + VX_SV_NODE_CHILDREN + k);
             vx_u32 count;
             if (d == g.depth - VX_SV_LEAF_EDGE_BITS - 1) /* the children are leaves */
