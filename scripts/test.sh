@@ -20,7 +20,7 @@ echo "== ctest (all backends required)"
 export VOXRAY_REQUIRE_ALL_BACKENDS=1
 (cd "$BUILD_DIR" && ctest --output-on-failure -j"$(nproc)" --timeout 900)
 
-CPU_LABELS='^(cpu|io|mesh|malformed|brickmap|naadf|sync|conformance|nanovdb)$'
+CPU_LABELS='^(cpu|io|mesh|malformed|brickmap|naadf|svdag|sync|conformance|nanovdb)$'
 CPU_ONLY=(-DCMAKE_DISABLE_FIND_PACKAGE_OpenCL=ON -DCMAKE_DISABLE_FIND_PACKAGE_Vulkan=ON
           -DCMAKE_DISABLE_FIND_PACKAGE_embree=ON -DVOXRAY_BUILD_TOOLS=OFF)
 # Sanitizer builds: -O1 with line tables only, which compiles about twice as fast as -O2 -g.
@@ -43,7 +43,7 @@ ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 \
     cpu_pass "AddressSanitizer + UBSan" "${ASAN_DIR:-$BUILD_DIR-asan}" "$CPU_LABELS" "${SANITIZED[@]}" \
     -DVOXRAY_SANITIZE=address
 TSAN_OPTIONS="halt_on_error=1 second_deadlock_stack=1" \
-    cpu_pass "ThreadSanitizer" "${TSAN_DIR:-$BUILD_DIR-tsan}" '^(brickmap|naadf|sync)$' "${SANITIZED[@]}" \
+    cpu_pass "ThreadSanitizer" "${TSAN_DIR:-$BUILD_DIR-tsan}" '^(brickmap|naadf|svdag|sync)$' "${SANITIZED[@]}" \
     -DVOXRAY_SANITIZE=thread
 cpu_pass "clang++-14" "${CLANG_DIR:-$BUILD_DIR-clang}" "$CPU_LABELS" -DCMAKE_BUILD_TYPE=Release \
     -DCMAKE_CXX_COMPILER=clang++-14
@@ -55,7 +55,7 @@ gpu_asan_pass() {
     local dir=${ASAN_GPU_DIR:-$BUILD_DIR-asan-gpu} labels='^(opencl|vulkan)$' start=$SECONDS
     echo "== AddressSanitizer + UBSan with OpenCL and Vulkan: tests labelled $labels ($dir)"
     cmake -S "$ROOT" -B "$dir" -DVOXRAY_REQUIRE_ALL_BACKENDS=ON -DVOXRAY_BUILD_TOOLS=OFF \
-        '-DVOXRAY_TEST_LABELS=^(opencl|vulkan|conformance|sync|brickmap)$' "${SANITIZED[@]}" \
+        '-DVOXRAY_TEST_LABELS=^(opencl|vulkan|conformance|sync|brickmap|svdag)$' "${SANITIZED[@]}" \
         -DVOXRAY_SANITIZE=address >/dev/null
     local targets
     targets=$(cd "$dir" && ctest -N -L "$labels" | sed -n 's/^ *Test *#[0-9]*: //p')
