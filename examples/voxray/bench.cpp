@@ -34,11 +34,6 @@ struct ray_set {
     int width = 0, height = 0;  // 0 for a ray file
 };
 
-std::string scene_label(const std::string& spec) {
-    if (spec.rfind("builtin:", 0) == 0) return spec;
-    return std::filesystem::path(spec).filename().string();
-}
-
 // `text` with ':' (builtin:menger:81) made '_', usable as a file name anywhere.
 std::string file_name(std::string text) {
     std::replace(text.begin(), text.end(), ':', '_');
@@ -146,14 +141,6 @@ nlohmann::json measure(const bench_options& o, slot& structure, traceable& engin
             {"ties", ties},
             {"limitation", limitation.empty() ? nlohmann::json() : nlohmann::json(limitation)},
             {"limitation_rays", limited}};
-}
-
-std::string own_command_line() {
-    std::ifstream in("/proc/self/cmdline", std::ios::binary);
-    std::string all((std::istreambuf_iterator<char>(in)), {}), out;
-    for (char c : all) out += c ? c : ' ';
-    while (!out.empty() && out.back() == ' ') out.pop_back();
-    return out;
 }
 
 void print_row(const nlohmann::json& r) {

@@ -7,6 +7,7 @@
 #include <cstdlib>
 #include <ctime>
 #include <fstream>
+#include <iterator>
 #include <string>
 #include <thread>
 
@@ -51,6 +52,15 @@ inline std::string utc_now() {
     char text[32];
     std::strftime(text, sizeof text, "%Y-%m-%dT%H:%M:%SZ", std::gmtime(&now));
     return text;
+}
+
+// This process's command line, as the results file records it.
+inline std::string own_command_line() {
+    std::ifstream in("/proc/self/cmdline", std::ios::binary);
+    std::string all((std::istreambuf_iterator<char>(in)), {}), out;
+    for (char c : all) out += c ? c : ' ';
+    while (!out.empty() && out.back() == ' ') out.pop_back();
+    return out;
 }
 
 // `simd_width`: lanes of the CPU backend's stream as chosen at run time.

@@ -44,6 +44,12 @@ struct scene_options {
     }
 };
 
+// How results name a scene: a built-in by its spec, a file by its name.
+inline std::string scene_label(const std::string& spec) {
+    if (spec.rfind("builtin:", 0) == 0) return spec;
+    return std::filesystem::path(spec).filename().string();
+}
+
 inline voxel_model load_scene(const std::string& spec, const scene_options& o) {
     auto start = std::chrono::steady_clock::now();
     std::fprintf(stderr, "loading %s ...\n", spec.c_str());
