@@ -75,6 +75,7 @@ TEST(svdag, hits_and_materials_equal_the_reference) {
     models.push_back(random_sparse({{-200, -7, 60}, {100, 90, 300}}, 20000, 8));  // a deeper cube
     models.push_back(tiled_model(64));  // shared subtrees with different materials
     models.push_back(make_builtin("menger:81", 2));
+    models.push_back(random_model(8, 0.5f, 4, {16, 32, 0}));  // fits the smallest cube, 2^3
     for (auto& model : models) {
         svdag dag(model);
         dense_grid grid(model);
