@@ -16,6 +16,20 @@
 //     VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT, bound to memory allocated with
 //     VK_MEMORY_ALLOCATE_DEVICE_ADDRESS_BIT; offsets multiples of 16.
 //
+// Synchronisation, two ways to trace (tracer::closest_hit / any_hit, and record_*):
+//   t.closest_hit(rays, hits, count)       one submission on the queue, waited on. A
+//       barrier before it makes the writes of earlier work on that queue (the rays)
+//       visible; one after makes the hits visible to later work on the queue and to the host.
+//   t.record_closest_hit(cmd, rays, hits, count)   records into the application's command
+//       buffer (recording, for a queue of `queue_family`) and submits nothing. It binds
+//       voxray's compute pipeline and push constants (rebind yours after) and records no
+//       barrier: the application orders its ray writes before it (dst COMPUTE_SHADER /
+//       SHADER_READ; also SHADER_WRITE if earlier work used the hit buffer) and its hit
+//       reads after it (src COMPUTE_SHADER / SHADER_WRITE). The recording uses the
+//       tracer's structure buffer as it is now: it must finish executing before update()
+//       or the tracer's destruction, and be recorded anew after update().
+// Structure uploads and update() run on the same queue and wait, as without interop.
+//
 // Layout: both buffers hold `count` records of 32 bytes, exactly core/ray_hit_layout.h
 // (vx_ray: origin, tmin, direction, tmax; vx_hit: t, voxel, face, material, steps,
 // status), i.e. voxray::ray and voxray::hit as bytes. Hit i belongs to ray i.
