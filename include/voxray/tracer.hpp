@@ -10,6 +10,9 @@
 //       void update_ranges(std::span<const std::uint32_t> blob, std::span<const word_range>);
 //       void trace(std::span<const ray>, std::span<hit>, std::uint32_t mode);
 //       std::uint64_t bytes_uploaded_last_update() const;
+//       // optional (GPU backends): rays and hits in the application's device buffers
+//       void trace_device(DeviceBuffer rays, DeviceBuffer hits, std::size_t count, std::uint32_t mode);
+//       void record_trace(CommandBuffer, DeviceBuffer rays, DeviceBuffer hits, std::size_t count, std::uint32_t mode);
 //   };
 // The tracer owns a snapshot of the structure's blob as of construction or the last
 // update(); the structure itself may be changed or destroyed afterwards.
