@@ -179,6 +179,36 @@ void traces_in_app_buffers(const Structure& s, const box3i& bounds) {
 TEST(OpenclInterop, BrickmapInAppBuffers) { auto m = scene(); traces_in_app_buffers(brickmap<>(m), m.bounds()); }
 TEST(OpenclInterop, NaadfInAppBuffers) { auto m = scene(); traces_in_app_buffers(naadf(m), m.bounds()); }
 
+// Incremental updates go through the application's queue too: after an edit and update(),
+// a trace on the application's buffers sees the new voxels.
+TEST(OpenclInterop, UpdateOnAppQueue) {
+    auto m = scene();
+    brickmap<> s(m);
+    tracer<opencl, brickmap<>> t(s, app().options());
+    s.apply(regions::sphere{{10, 20, -5}, 6}, edit_op::fill, 7);
+    t.update(s);
+    EXPECT_GT(t.bytes_uploaded_last_update(), 0u);
+
+    auto rays = check_rays(m.bounds(), 1, 2000, 31);
+    std::vector<hit> expected(rays.size()), got(rays.size());
+    tracer<cpu, brickmap<>>(s).closest_hit(rays, expected);
+    std::size_t edited = 0;
+    for (const hit& h : expected) edited += h.is_hit() && h.material == 7;
+    EXPECT_GT(edited, 10u) << "the edit should be in view of the rays";
+
+    cl_mem in = app().buffer(rays.size() * sizeof(ray)), out = app().buffer(rays.size() * sizeof(hit));
+    ok(clEnqueueWriteBuffer(app().queue, in, CL_FALSE, 0, rays.size() * sizeof(ray), rays.data(), 0, nullptr, nullptr),
+       "clEnqueueWriteBuffer");
+    t.closest_hit(in, out, rays.size());
+    ok(clEnqueueReadBuffer(app().queue, out, CL_TRUE, 0, got.size() * sizeof(hit), got.data(), 0, nullptr, nullptr),
+       "clEnqueueReadBuffer");
+    clReleaseMemObject(in);
+    clReleaseMemObject(out);
+    std::size_t bad = 0;
+    for (std::size_t i = 0; i < rays.size(); ++i) bad += !test::same_bits(got[i], expected[i]);
+    EXPECT_EQ(bad, 0u) << "closest_hit after an update";
+}
+
 template <class F>
 std::string error_of(F f) {
     try {

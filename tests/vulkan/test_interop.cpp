@@ -289,6 +289,34 @@ TEST(VulkanInterop, TracersComeAndGo) {
     expect_device_usable();
 }
 
+// Staged uploads and incremental updates go through the application's queue too: after an
+// edit and update(), a trace on the application's buffers sees the new voxels.
+TEST(VulkanInterop, StagedUpdateOnAppQueue) {
+    auto m = scene();
+    brickmap<> s(m);
+    vulkan_options o = app().options();
+    o.force_staging = true;
+    tracer<vulkan, brickmap<>> t(s, o);
+    EXPECT_TRUE(t.engine().uses_staging());
+    s.apply(regions::sphere{{10, 20, -5}, 6}, edit_op::fill, 7);
+    t.update(s);
+    EXPECT_GT(t.bytes_uploaded_last_update(), 0u);
+
+    auto rays = check_rays(m.bounds(), 1, 2000, 31);
+    std::vector<hit> expected(rays.size());
+    tracer<cpu, brickmap<>>(s).closest_hit(rays, expected);
+    std::size_t edited = 0;
+    for (const hit& h : expected) edited += h.is_hit() && h.material == 7;
+    EXPECT_GT(edited, 10u) << "the edit should be in view of the rays";
+
+    VkDeviceSize bytes = rays.size() * sizeof(ray) + 256;
+    app_buffer in(app(), bytes), out(app(), bytes);
+    std::memcpy(in.bytes() + ray_offset, rays.data(), rays.size() * sizeof(ray));
+    std::memset(out.mapped, poison, bytes);
+    t.closest_hit(vulkan_buffer_range{in.buffer, ray_offset}, vulkan_buffer_range{out.buffer, hit_offset}, rays.size());
+    expect_hits(out, expected, "closest_hit after a staged update");
+}
+
 template <class F>
 std::string error_of(F f) {
     try {
