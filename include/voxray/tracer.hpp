@@ -10,6 +10,9 @@
 //       void update_ranges(std::span<const std::uint32_t> blob, std::span<const word_range>);
 //       void trace(std::span<const ray>, std::span<hit>, std::uint32_t mode);
 //       std::uint64_t bytes_uploaded_last_update() const;
+//       // optional (GPU backends): rays and hits in the application's device buffers
+//       void trace_device(DeviceBuffer rays, DeviceBuffer hits, std::size_t count, std::uint32_t mode);
+//       void record_trace(CommandBuffer, DeviceBuffer rays, DeviceBuffer hits, std::size_t count, std::uint32_t mode);
 //   };
 // The tracer owns a snapshot of the structure's blob as of construction or the last
 // update(); the structure itself may be changed or destroyed afterwards.
@@ -95,6 +98,7 @@ class tracer {
 public:
     using backend_type = Backend;
     using structure_type = Structure;
+    using engine_type = typename Backend::template engine<typename Structure::kernel>;
 
     explicit tracer(const Structure& structure, typename Backend::options options = {}) : engine_(options) {
         update(structure);
@@ -169,6 +173,39 @@ public:
         }
     }
 
+    // Interop, GPU backends only: rays and hits in device buffers the application owns
+    // (Vulkan: vulkan_buffer_range; OpenCL: cl_mem), `count` 32-byte records each in the
+    // layout of core/ray_hit_layout.h. Vulkan submits on the application's queue and
+    // waits; OpenCL enqueues on its queue and returns. Details: vulkan/interop.hpp,
+    // opencl/interop.hpp.
+    template <class DeviceBuffer>
+        requires requires(engine_type& e, const DeviceBuffer& b) { e.trace_device(b, b, std::size_t{}, VX_MODE_ANY); }
+    void closest_hit(const DeviceBuffer& rays, const DeviceBuffer& hits, std::size_t count) {
+        engine_.trace_device(rays, hits, count, VX_MODE_CLOSEST);
+    }
+    template <class DeviceBuffer>
+        requires requires(engine_type& e, const DeviceBuffer& b) { e.trace_device(b, b, std::size_t{}, VX_MODE_ANY); }
+    void any_hit(const DeviceBuffer& rays, const DeviceBuffer& hits, std::size_t count) {
+        engine_.trace_device(rays, hits, count, VX_MODE_ANY);
+    }
+
+    // Interop, Vulkan: records the trace into the application's command buffer and
+    // submits nothing; barriers are the application's (vulkan/interop.hpp).
+    template <class Commands, class DeviceBuffer>
+        requires requires(engine_type& e, Commands c, const DeviceBuffer& b) {
+            e.record_trace(c, b, b, std::size_t{}, VX_MODE_ANY);
+        }
+    void record_closest_hit(Commands commands, const DeviceBuffer& rays, const DeviceBuffer& hits, std::size_t count) {
+        engine_.record_trace(commands, rays, hits, count, VX_MODE_CLOSEST);
+    }
+    template <class Commands, class DeviceBuffer>
+        requires requires(engine_type& e, Commands c, const DeviceBuffer& b) {
+            e.record_trace(c, b, b, std::size_t{}, VX_MODE_ANY);
+        }
+    void record_any_hit(Commands commands, const DeviceBuffer& rays, const DeviceBuffer& hits, std::size_t count) {
+        engine_.record_trace(commands, rays, hits, count, VX_MODE_ANY);
+    }
+
     auto& engine() { return engine_; }
 
 private:
@@ -193,7 +230,7 @@ private:
         engine_.trace(rays, hits.first(rays.size()), mode);
     }
 
-    typename Backend::template engine<typename Structure::kernel> engine_;
+    engine_type engine_;
     std::size_t uploaded_words_ = 0;
     std::uint64_t generation_ = 0;  // of the structure's content this tracer holds
 };

@@ -1,5 +1,8 @@
 // Public entry point of the OpenCL backend (target voxray::opencl):
 //   voxray::tracer<voxray::opencl, voxray::dense_grid> t(grid, {.device = "pthread"});
+// On the application's own context, queue and buffers (opencl/interop.hpp):
+//   options.user_context = voxray::opencl_user_context{context, device, queue};
+//   t.closest_hit(ray_mem, hit_mem, n);   // enqueued on that queue; its order synchronises
 #pragma once
 // Set by the CMake target voxray::opencl (which brings the OpenCL library and the kernel
 // sources): without it the program would compile and then fail to link.

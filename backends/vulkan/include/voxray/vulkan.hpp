@@ -10,6 +10,11 @@
 // run time it needs a Vulkan 1.2 driver with bufferDeviceAddress (any current GPU
 // driver, or Mesa's lavapipe on the CPU). Structures are not limited by
 // maxStorageBufferRange: the shaders reach them by buffer device address.
+//
+// On the application's own device and buffers (vulkan/interop.hpp):
+//   options.user_device = voxray::vulkan_user_device{instance, physical, device, family, queue};
+//   t.closest_hit(voxray::vulkan_buffer_range{rays, offset}, voxray::vulkan_buffer_range{hits}, n);
+//   t.record_closest_hit(command_buffer, rays, hits, n);   // recorded only; barriers are yours
 #pragma once
 // Set by the CMake target voxray::vulkan, which also brings the Vulkan loader and the
 // compiled shaders: without it the program would compile and then fail to link.

@@ -1,16 +1,19 @@
 // Choosing the OpenCL device. By default the first GPU of any platform, else the first
 // device of any type (PoCL's CPU device on machines without a GPU). Options narrow the
-// choice by case-insensitive substrings of the platform and device names.
+// choice by case-insensitive substrings of the platform and device names, or name the
+// application's own context, device and queue (opencl/interop.hpp).
 #pragma once
 #include <CL/cl.h>
 
 #include <algorithm>
 #include <cctype>
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "voxray/opencl/error.hpp"
+#include "voxray/opencl/interop.hpp"
 
 namespace voxray {
 
@@ -18,6 +21,9 @@ struct opencl_options {
     std::string platform;  // substring of the platform name; empty: any
     std::string device;    // substring of the device name; empty: any
     bool prefer_gpu = true;  // among the matches, take a GPU before other device types
+    // Run in the application's context and queue instead of choosing a device (see
+    // opencl/interop.hpp); the fields above are then ignored.
+    std::optional<opencl_user_context> user_context;
 };
 
 namespace opencl_detail {
@@ -122,6 +128,45 @@ inline device_choice select_device(const opencl_options& options) {
                            "; found " + std::to_string(platform_count) + " platform(s), with their devices: " +
                            describe(found) + (none_at_all ? zero_devices_hint : ""),
                        CL_DEVICE_NOT_FOUND);
+}
+
+// The application's context, device and queue (opencl/interop.hpp), checked to fit together.
+inline device_choice check_user_context(const opencl_user_context& user) {
+    auto missing = [](const char* field) {
+        fail("OpenCL: opencl_user_context::", field, " is null; voxray needs all of context, device and queue");
+    };
+    if (!user.context) missing("context");
+    if (!user.device) missing("device");
+    if (!user.queue) missing("queue");
+    device_choice c{device_value<cl_platform_id>(user.device, CL_DEVICE_PLATFORM), user.device, {}, {}};
+    c.platform_name = platform_string(c.platform, CL_PLATFORM_NAME);
+    c.device_name = device_string(user.device, CL_DEVICE_NAME);
+
+    cl_uint count = 0;
+    check(clGetContextInfo(user.context, CL_CONTEXT_NUM_DEVICES, sizeof count, &count, nullptr), "clGetContextInfo",
+          "inspecting the application's context");
+    std::vector<cl_device_id> devices(count);
+    check(clGetContextInfo(user.context, CL_CONTEXT_DEVICES, count * sizeof(cl_device_id), devices.data(), nullptr),
+          "clGetContextInfo", "inspecting the application's context");
+    if (std::find(devices.begin(), devices.end(), user.device) == devices.end())
+        fail("OpenCL: device '", c.device_name, "' is not one of the ", count, " device(s) of the application's context");
+
+    cl_context queue_context = nullptr;
+    cl_device_id queue_device = nullptr;
+    cl_command_queue_properties props = 0;
+    check(clGetCommandQueueInfo(user.queue, CL_QUEUE_CONTEXT, sizeof queue_context, &queue_context, nullptr),
+          "clGetCommandQueueInfo", "inspecting the application's queue");
+    check(clGetCommandQueueInfo(user.queue, CL_QUEUE_DEVICE, sizeof queue_device, &queue_device, nullptr),
+          "clGetCommandQueueInfo", "inspecting the application's queue");
+    check(clGetCommandQueueInfo(user.queue, CL_QUEUE_PROPERTIES, sizeof props, &props, nullptr),
+          "clGetCommandQueueInfo", "inspecting the application's queue");
+    if (queue_context != user.context) fail("OpenCL: the application's queue belongs to another context");
+    if (queue_device != user.device)
+        fail("OpenCL: the application's queue is for another device than '", c.device_name, "'");
+    if (props & CL_QUEUE_OUT_OF_ORDER_EXEC_MODE_ENABLE)
+        fail("OpenCL: the application's queue is out of order (CL_QUEUE_OUT_OF_ORDER_EXEC_MODE_ENABLE); voxray needs "
+             "an in-order queue");
+    return c;
 }
 
 }  // namespace opencl_detail

@@ -1,6 +1,7 @@
 // The OpenCL engine for one structure kernel: the blob lives in one device buffer, rays
 // and hits go through two more that are reused while they are big enough. Edits reach
-// the device blob through update_ranges (opencl/commit.hpp). One engine per thread: an
+// the device blob through update_ranges (opencl/commit.hpp). trace_device traces rays
+// already in the application's buffers (opencl/interop.hpp). One engine per thread: an
 // engine's kernel arguments and buffers are not guarded.
 #pragma once
 #include <CL/cl.h>
@@ -18,6 +19,7 @@
 #include "voxray/core/ray.hpp"
 #include "voxray/opencl/buffer.hpp"
 #include "voxray/opencl/commit.hpp"
+#include "voxray/opencl/interop.hpp"
 #include "voxray/opencl/program_cache.hpp"
 #include "voxray/sync/dirty_ranges.hpp"
 
@@ -51,9 +53,16 @@ class opencl_engine {
 
 public:
     explicit opencl_engine(opencl_options options) : ctx_(acquire_device_context(options)), committer_(ctx_) {
-        cl_int status = CL_SUCCESS;
-        queue_ = queue_handle(clCreateCommandQueue(ctx_->context(), ctx_->device(), 0, &status));
-        check(status, "clCreateCommandQueue", "opening device '" + ctx_->device_name() + "'");
+        if (options.user_context) {
+            // The application's queue (checked by acquire_device_context): retained, so
+            // that releasing ours leaves the application's reference alone.
+            check(clRetainCommandQueue(options.user_context->queue), "clRetainCommandQueue", "the application's queue");
+            queue_ = queue_handle(options.user_context->queue);
+        } else {
+            cl_int status = CL_SUCCESS;
+            queue_ = queue_handle(clCreateCommandQueue(ctx_->context(), ctx_->device(), 0, &status));
+            check(status, "clCreateCommandQueue", "opening device '" + ctx_->device_name() + "'");
+        }
         cl_program program = ctx_->program(program_);
         closest_ = create_kernel(program, std::string("vx_closest_") + Kernel::name);
         any_ = create_kernel(program, std::string("vx_any_") + Kernel::name);
@@ -126,21 +135,23 @@ public:
             check(clEnqueueWriteBuffer(queue_.get(), rays_.get(), CL_TRUE, 0, std::size_t(count) * VX_RAY_BYTES,
                                        rays.data() + first, 0, nullptr, nullptr),
                   "clEnqueueWriteBuffer", "sending rays");
-            cl_mem blob = blob_.get(), in = rays_.get(), out = hits_.get();
-            cl_kernel kernel = mode == VX_MODE_ANY ? any_.get() : closest_.get();
-            check(clSetKernelArg(kernel, 0, sizeof blob, &blob), "clSetKernelArg", "setting the blob");
-            check(clSetKernelArg(kernel, 1, sizeof in, &in), "clSetKernelArg", "setting the rays");
-            check(clSetKernelArg(kernel, 2, sizeof out, &out), "clSetKernelArg", "setting the hits");
-            check(clSetKernelArg(kernel, 3, sizeof count, &count), "clSetKernelArg", "setting the count");
-            // The global size is rounded up to whole groups; the kernel skips the extra items.
-            std::size_t global = (std::size_t(count) + local_size_ - 1) / local_size_ * local_size_;
-            check(clEnqueueNDRangeKernel(queue_.get(), kernel, 1, nullptr, &global, &local_size_, 0, nullptr,
-                                         nullptr),
-                  "clEnqueueNDRangeKernel", "tracing " + std::to_string(count) + " rays");
+            enqueue_trace(rays_.get(), hits_.get(), count, mode);
             check(clEnqueueReadBuffer(queue_.get(), hits_.get(), CL_TRUE, 0, std::size_t(count) * VX_HIT_BYTES,
                                       hits.data() + first, 0, nullptr, nullptr),
                   "clEnqueueReadBuffer", "reading hits");
         }
+    }
+
+    // Interop (opencl/interop.hpp): rays and hits in the application's buffers. Enqueues
+    // the kernel on the queue and returns; the in-order queue orders it after the commands
+    // before it and before those after it.
+    void trace_device(cl_mem rays, cl_mem hits, std::size_t count, std::uint32_t mode) {
+        if (!uploaded_) fail("OpenCL: trace before any structure was uploaded");
+        check_user_buffer(rays, count, ctx_->context(), "rays");
+        check_user_buffer(hits, count, ctx_->context(), "hits");
+        if (count > std::numeric_limits<cl_uint>::max() - local_size_)
+            fail("OpenCL: ", count, " rays in one trace, more than the kernel's 32-bit count allows; split them");
+        if (count > 0) enqueue_trace(rays, hits, cl_uint(count), mode);
     }
 
     std::string device_name() const { return ctx_->device_name(); }
@@ -155,6 +166,21 @@ private:
     void count_upload(std::uint64_t bytes) {
         last_bytes_ = bytes;
         total_bytes_ += bytes;
+    }
+
+    // Kernel arguments are captured at enqueue time, so the kernel object is free for the
+    // next call at once.
+    void enqueue_trace(cl_mem in, cl_mem out, cl_uint count, std::uint32_t mode) {
+        cl_mem blob = blob_.get();
+        cl_kernel kernel = mode == VX_MODE_ANY ? any_.get() : closest_.get();
+        check(clSetKernelArg(kernel, 0, sizeof blob, &blob), "clSetKernelArg", "setting the blob");
+        check(clSetKernelArg(kernel, 1, sizeof in, &in), "clSetKernelArg", "setting the rays");
+        check(clSetKernelArg(kernel, 2, sizeof out, &out), "clSetKernelArg", "setting the hits");
+        check(clSetKernelArg(kernel, 3, sizeof count, &count), "clSetKernelArg", "setting the count");
+        // The global size is rounded up to whole groups; the kernel skips the extra items.
+        std::size_t global = (std::size_t(count) + local_size_ - 1) / local_size_ * local_size_;
+        check(clEnqueueNDRangeKernel(queue_.get(), kernel, 1, nullptr, &global, &local_size_, 0, nullptr, nullptr),
+              "clEnqueueNDRangeKernel", "tracing " + std::to_string(count) + " rays");
     }
 
     kernel_handle create_kernel(cl_program program, const std::string& entry) const {

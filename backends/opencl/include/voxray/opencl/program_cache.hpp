@@ -13,6 +13,7 @@
 #include <mutex>
 #include <string>
 #include <string_view>
+#include <utility>
 
 #include "voxray/generated/opencl_programs.hpp"
 #include "voxray/opencl/device.hpp"
@@ -33,15 +34,15 @@ public:
                                          reinterpret_cast<cl_context_properties>(choice.platform), 0};
         context_ = context_handle(clCreateContext(props, 1, &choice_.device, nullptr, nullptr, &status));
         check(status, "clCreateContext", "opening device '" + choice_.device_name + "'");
-        max_alloc_ = device_value<cl_ulong>(choice_.device, CL_DEVICE_MAX_MEM_ALLOC_SIZE);
-        max_group_ = device_value<std::size_t>(choice_.device, CL_DEVICE_MAX_WORK_GROUP_SIZE);
-        auto fp = device_value<cl_device_fp_config>(choice_.device, CL_DEVICE_SINGLE_FP_CONFIG);
-        correctly_rounded_ = (fp & CL_FP_CORRECTLY_ROUNDED_DIVIDE_SQRT) != 0;
-        // -cl-std: the kernels are OpenCL C 1.2 (PoCL offers nothing newer anyway).
-        // Correctly rounded division: only where the device offers it (the option is
-        // invalid elsewhere); it makes the DDA's 1/d match the CPU backends bit for bit.
-        options_ = "-cl-std=CL1.2";
-        if (correctly_rounded_) options_ += " -cl-fp32-correctly-rounded-divide-sqrt";
+        read_device();
+    }
+
+    // The application's context (opencl/interop.hpp): retained here, released by
+    // context_handle, so the application's own reference stays valid.
+    device_context(const device_choice& choice, cl_context borrowed) : choice_(choice) {
+        check(clRetainContext(borrowed), "clRetainContext", "the application's context");
+        context_ = context_handle(borrowed);
+        read_device();
     }
 
     cl_context context() const { return context_.get(); }
@@ -69,6 +70,19 @@ public:
     const std::string& build_options() const { return options_; }
 
 private:
+    // Limits and build options of the device.
+    void read_device() {
+        max_alloc_ = device_value<cl_ulong>(choice_.device, CL_DEVICE_MAX_MEM_ALLOC_SIZE);
+        max_group_ = device_value<std::size_t>(choice_.device, CL_DEVICE_MAX_WORK_GROUP_SIZE);
+        auto fp = device_value<cl_device_fp_config>(choice_.device, CL_DEVICE_SINGLE_FP_CONFIG);
+        correctly_rounded_ = (fp & CL_FP_CORRECTLY_ROUNDED_DIVIDE_SQRT) != 0;
+        // -cl-std: the kernels are OpenCL C 1.2 (PoCL offers nothing newer anyway).
+        // Correctly rounded division: only where the device offers it (the option is
+        // invalid elsewhere); it makes the DDA's 1/d match the CPU backends bit for bit.
+        options_ = "-cl-std=CL1.2";
+        if (correctly_rounded_) options_ += " -cl-fp32-correctly-rounded-divide-sqrt";
+    }
+
     struct built_program {
         program_handle program;
         double seconds = 0;
@@ -114,9 +128,21 @@ private:
 };
 
 // The shared context of the device `options` select, created (and its program built)
-// on first use.
+// on first use; or the application's context (opencl_options::user_context), shared by
+// the tracers made on it. While an entry lives it retains its cl_context, so the key
+// cannot be freed and reused by another context meanwhile.
 inline std::shared_ptr<device_context> acquire_device_context(const opencl_options& options) {
     static std::mutex mutex;
+    if (options.user_context) {
+        static std::map<std::pair<cl_context, cl_device_id>, std::weak_ptr<device_context>> borrowed;
+        device_choice choice = check_user_context(*options.user_context);
+        std::lock_guard lock(mutex);
+        auto& slot = borrowed[{options.user_context->context, choice.device}];
+        if (auto existing = slot.lock()) return existing;
+        auto fresh = std::make_shared<device_context>(choice, options.user_context->context);
+        slot = fresh;
+        return fresh;
+    }
     static std::map<cl_device_id, std::weak_ptr<device_context>> registry;
     device_choice choice = select_device(options);
     std::lock_guard lock(mutex);

@@ -1,5 +1,6 @@
 // The Vulkan instance, the chosen physical device, its logical device and one compute
-// queue. Everything else in the backend borrows these handles from one `context`.
+// queue. Everything else in the backend borrows these handles from one `context`, which
+// either creates them or takes the application's (vulkan_options::user_device).
 //
 // Needs Vulkan 1.2 for buffer device addresses: the shaders reach structure, rays and
 // hits through 64-bit addresses in push constants, so no descriptor and therefore no
@@ -91,6 +92,10 @@ inline candidate inspect(VkPhysicalDevice pd) {
 class context {
 public:
     explicit context(const vulkan_options& options) {
+        if (options.user_device) {
+            borrow(*options.user_device);
+            return;
+        }
         try {
             create_instance();
             choose_device(options);
@@ -115,7 +120,42 @@ public:
     VkDeviceSize max_allocation() const { return max_allocation_; }
     VkDeviceSize max_buffer() const { return max_buffer_; }
 
+    // False on the application's device (vulkan_options::user_device): nothing to destroy.
+    bool owns_device() const { return owns_; }
+
 private:
+    // The application's handles: checked, then used as they are, never destroyed.
+    void borrow(const vulkan_user_device& user) {
+        auto missing = [](const char* field) {
+            fail("vulkan: vulkan_user_device::", field, " is VK_NULL_HANDLE; voxray needs all of instance, "
+                 "physical_device, device and queue");
+        };
+        if (!user.instance) missing("instance");
+        if (!user.physical_device) missing("physical_device");
+        if (!user.device) missing("device");
+        if (!user.queue) missing("queue");
+        chosen_ = inspect(user.physical_device);
+        if (!chosen_.problem.empty())
+            fail("vulkan: the application's device ", chosen_.properties.deviceName, " ", chosen_.problem);
+        std::uint32_t n = 0;
+        vkGetPhysicalDeviceQueueFamilyProperties(user.physical_device, &n, nullptr);
+        std::vector<VkQueueFamilyProperties> families(n);
+        vkGetPhysicalDeviceQueueFamilyProperties(user.physical_device, &n, families.data());
+        if (user.queue_family >= n)
+            fail("vulkan: vulkan_user_device::queue_family is ", user.queue_family, " but ",
+                 chosen_.properties.deviceName, " has ", n, " queue families");
+        if (!(families[user.queue_family].queueFlags & VK_QUEUE_COMPUTE_BIT))
+            fail("vulkan: queue family ", user.queue_family, " of ", chosen_.properties.deviceName,
+                 " does not support compute");
+        owns_ = false;
+        instance_ = user.instance;
+        device_ = user.device;
+        queue_ = user.queue;
+        chosen_.queue_family = user.queue_family;
+        vkGetPhysicalDeviceMemoryProperties(chosen_.handle, &memory_);
+        read_limits();
+    }
+
     void create_instance() {
         // vkEnumerateInstanceVersion is missing from 1.0 loaders, which cannot do 1.2 anyway.
         auto enumerate_version = reinterpret_cast<PFN_vkEnumerateInstanceVersion>(
@@ -241,6 +281,7 @@ private:
     }
 
     void destroy() {
+        if (!owns_) return;
         if (device_) vkDestroyDevice(device_, nullptr);
         if (instance_) vkDestroyInstance(instance_, nullptr);
         device_ = VK_NULL_HANDLE;
@@ -250,6 +291,7 @@ private:
     VkInstance instance_ = VK_NULL_HANDLE;
     VkDevice device_ = VK_NULL_HANDLE;
     VkQueue queue_ = VK_NULL_HANDLE;
+    bool owns_ = true;
     candidate chosen_;
     VkPhysicalDeviceMemoryProperties memory_{};
     VkDeviceSize max_allocation_ = 0;

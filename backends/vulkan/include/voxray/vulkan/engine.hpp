@@ -4,9 +4,10 @@
 //   update_ranges(blob, ranges)  only the changed words, through a commit packet and the
 //                                commit shader (vulkan/commit.hpp)
 //   trace(...)                   per batch slice: rays in, one dispatch of ceil(n / 64) groups, hits out
+//   trace_device / record_trace  rays and hits in the application's buffers (vulkan/interop.hpp)
 //
-// Synchronous: trace returns when the hits are in the caller's span. Not thread-safe;
-// use one engine per thread.
+// Synchronous: trace returns when the hits are in the caller's span (record_trace only
+// records). Not thread-safe; use one engine per thread.
 #pragma once
 #include <algorithm>
 #include <bit>
@@ -31,6 +32,7 @@
 #include "voxray/vulkan/commands.hpp"
 #include "voxray/vulkan/commit.hpp"
 #include "voxray/vulkan/device.hpp"
+#include "voxray/vulkan/interop.hpp"
 #include "voxray/vulkan/options.hpp"
 #include "voxray/vulkan/pipeline.hpp"
 
@@ -178,6 +180,38 @@ public:
         }
     }
 
+    // Interop (vulkan/interop.hpp): rays and hits in the application's buffers, traced on
+    // its queue; returns when the hits are written. A barrier first makes the writes of
+    // earlier work on this queue (the rays) visible to the trace, one after makes the hits
+    // visible to later work on this queue and to the host.
+    void trace_device(const vulkan_buffer_range& rays, const vulkan_buffer_range& hits, std::size_t count,
+                      std::uint32_t mode) {
+        auto [in, out] = device_addresses(rays, hits, count);
+        if (count == 0) return;
+        VkCommandBuffer cmd = commands_->begin();
+        command_stream::barrier(cmd, VK_PIPELINE_STAGE_ALL_COMMANDS_BIT, VK_ACCESS_MEMORY_WRITE_BIT,
+                                VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
+                                VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT);
+        record_dispatches(cmd, in, out, count, mode);
+        command_stream::barrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
+                                VK_PIPELINE_STAGE_ALL_COMMANDS_BIT | VK_PIPELINE_STAGE_HOST_BIT,
+                                VK_ACCESS_MEMORY_READ_BIT | VK_ACCESS_MEMORY_WRITE_BIT | VK_ACCESS_HOST_READ_BIT);
+        commands_->submit_and_wait();
+    }
+
+    // Interop: records the trace into the application's command buffer (in the recording
+    // state, for a queue of this device's family) and submits nothing. It binds voxray's
+    // pipeline and push constants, and records no barrier: the application orders its ray
+    // writes before (to COMPUTE_SHADER / SHADER_READ) and its hit reads after (from
+    // COMPUTE_SHADER / SHADER_WRITE). The recording refers to the structure buffer as it
+    // is now: re-record after update(), and let it finish before update() or destruction.
+    void record_trace(VkCommandBuffer cmd, const vulkan_buffer_range& rays, const vulkan_buffer_range& hits,
+                      std::size_t count, std::uint32_t mode) {
+        if (!cmd) fail("vulkan: record_trace needs a command buffer, got VK_NULL_HANDLE");
+        auto [in, out] = device_addresses(rays, hits, count);
+        if (count > 0) record_dispatches(cmd, in, out, count, mode);
+    }
+
     std::string device_name() const { return ctx_->name(); }
     // Type, limits (maxStorageBufferRange...) and API version of the device in use.
     const VkPhysicalDeviceProperties& device_properties() const { return ctx_->properties(); }
@@ -236,9 +270,7 @@ private:
             command_stream::barrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT,
                                     VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_READ_BIT);
         }
-        push_constants pc{blob_.address(), rays_.address(), hits_.address(), std::uint32_t(rays.size()), 0};
-        (mode == VX_MODE_ANY ? any_ : closest_)->bind(cmd, pc);
-        vkCmdDispatch(cmd, std::uint32_t((rays.size() + group_size - 1) / group_size), 1, 1);
+        record_dispatches(cmd, rays_.address(), hits_.address(), rays.size(), mode);
         // The host may read the hits only after a barrier that makes shader writes
         // visible to it (directly, or after the copy into the staging buffer).
         if (hits_.mapped()) {
@@ -254,6 +286,25 @@ private:
         }
         commands_->submit_and_wait();
         std::memcpy(hits.data(), hits_.mapped() ? hits_.mapped() : hits_staging_.mapped(), bytes);
+    }
+
+    // One dispatch per maxComputeWorkGroupCount groups; the addresses advance between them.
+    void record_dispatches(VkCommandBuffer cmd, VkDeviceAddress rays, VkDeviceAddress hits, std::size_t count,
+                           std::uint32_t mode) {
+        std::size_t per = std::size_t(ctx_->properties().limits.maxComputeWorkGroupCount[0]) * group_size;
+        for (std::size_t first = 0; first < count; first += per) {
+            std::size_t n = std::min(per, count - first);
+            push_constants pc{blob_.address(), rays + first * sizeof(ray), hits + first * sizeof(hit),
+                              std::uint32_t(n), 0};
+            (mode == VX_MODE_ANY ? any_ : closest_)->bind(cmd, pc);
+            vkCmdDispatch(cmd, std::uint32_t((n + group_size - 1) / group_size), 1, 1);
+        }
+    }
+
+    std::pair<VkDeviceAddress, VkDeviceAddress> device_addresses(const vulkan_buffer_range& rays,
+                                                                 const vulkan_buffer_range& hits, std::size_t count) {
+        if (!blob_.handle()) fail("vulkan: trace called before any structure was uploaded");
+        return {record_address(ctx_->device(), rays, count, "rays"), record_address(ctx_->device(), hits, count, "hits")};
     }
 
     vulkan_options options_;

@@ -1,6 +1,9 @@
 // Start-up settings of the Vulkan backend.
 #pragma once
+#include <optional>
 #include <string>
+
+#include "voxray/vulkan/interop.hpp"
 
 namespace voxray {
 
@@ -13,6 +16,9 @@ struct vulkan_options {
     // host-visible device memory, even where every memory type is host-visible (tests use
     // this to exercise that path on lavapipe).
     bool force_staging = false;
+    // Run on the application's device instead of creating one (see vulkan/interop.hpp);
+    // `device` is then ignored. voxray borrows the handles and never destroys them.
+    std::optional<vulkan_user_device> user_device;
 };
 
 }  // namespace voxray
