@@ -85,13 +85,23 @@ function(voxray_add_structure name)
     endif()
     # The includable sources for users' own shaders and kernels (installed as
     # voxray/shaders/<name>.glsl and .cl): the same kernel files after the dialect's head,
-    # without voxray's entry points and without #line markers.
+    # without voxray's entry points and without #line markers. The shared dialect and the
+    # structure's kernel each sit inside an include guard, so that one shader or program
+    # may include several structures.
     set(shaders ${VOXRAY_GENERATED}/voxray/shaders)
     set(backends_dir ${PROJECT_SOURCE_DIR}/backends)
+    set(guards ${VOXRAY_GENERATED}/guards)
+    string(TOUPPER ${name} upper)
+    file(CONFIGURE OUTPUT ${guards}/dialect_begin.h CONTENT "#ifndef VOXRAY_SHADER_DIALECT\n#define VOXRAY_SHADER_DIALECT\n")
+    file(CONFIGURE OUTPUT ${guards}/dialect_end.h CONTENT "#endif /* VOXRAY_SHADER_DIALECT */\n")
+    file(CONFIGURE OUTPUT ${guards}/${name}_begin.h CONTENT "#ifndef VOXRAY_SHADER_${upper}\n#define VOXRAY_SHADER_${upper}\n")
+    file(CONFIGURE OUTPUT ${guards}/${name}_end.h CONTENT "#endif /* VOXRAY_SHADER_${upper} */\n")
+    voxray_kernel_files(dialect_files)
+    set(guarded_kernel ${guards}/dialect_end.h ${guards}/${name}_begin.h ${dir}/kernel.h ${guards}/${name}_end.h)
     voxray_flatten(OUTPUT ${shaders}/${name}.glsl FILES ${backends_dir}/vulkan/shaders/include_head.glsl
-        ${backends_dir}/vulkan/shaders/dialect.glsl ${kernel_files})
+        ${guards}/dialect_begin.h ${backends_dir}/vulkan/shaders/dialect.glsl ${dialect_files} ${guarded_kernel})
     voxray_flatten(OUTPUT ${shaders}/${name}.cl FILES ${backends_dir}/opencl/kernels/include_head.cl
-        ${cl_dir}/preamble.cl ${kernel_files})
+        ${guards}/dialect_begin.h ${cl_dir}/preamble.cl ${dialect_files} ${guarded_kernel})
     list(APPEND outputs ${shaders}/${name}.glsl ${shaders}/${name}.cl)
     if(TARGET voxray_opencl)
         voxray_opencl_add_program(${name} ${cl})

@@ -19,6 +19,7 @@
 #include "voxray/cpu.hpp"
 #include "voxray/dense_grid/dense_grid.hpp"
 #include "voxray/naadf/naadf.hpp"
+#include "voxray/svdag/svdag.hpp"
 #include "voxray/opencl/device.hpp"
 #include "voxray/opencl/error.hpp"
 #include "voxray/opencl/handles.hpp"
@@ -43,8 +44,10 @@ cl_mem make_buffer(cl_context ctx, cl_mem_flags flags, std::size_t bytes, const 
     return m;
 }
 
+// `other`: a structure whose traversal the program includes first, as a program tracing
+// several would (the one called is then the second include).
 template <class Structure>
-void user_kernel_matches_cpu(const Structure& s, const box3i& bounds) {
+void user_kernel_matches_cpu(const Structure& s, const box3i& bounds, const std::string& other) {
     auto rays = check_rays(bounds, 1, 4000, 17);
     std::vector<hit> expected(rays.size()), expected_any(rays.size());
     tracer<cpu, Structure> reference(s);
@@ -59,8 +62,8 @@ void user_kernel_matches_cpu(const Structure& s, const box3i& bounds) {
     ocl::queue_handle queue(clCreateCommandQueue(ctx.get(), dev.device, 0, &status));
     ocl::check(status, "clCreateCommandQueue");
     std::string name = Structure::kernel::name;
-    std::string source = "#define USER_TRACE vx_" + name + "_trace\n#include \"voxray/shaders/" + name + ".cl\"\n" +
-                         read_text(VOXRAY_USER_KERNEL);
+    std::string source = "#define USER_TRACE vx_" + name + "_trace\n#include \"voxray/shaders/" + other +
+                         ".cl\"\n#include \"voxray/shaders/" + name + ".cl\"\n" + read_text(VOXRAY_USER_KERNEL);
     const char* text = source.c_str();
     ocl::program_handle program(clCreateProgramWithSource(ctx.get(), 1, &text, nullptr, &status));
     ocl::check(status, "clCreateProgramWithSource");
@@ -111,8 +114,9 @@ void user_kernel_matches_cpu(const Structure& s, const box3i& bounds) {
 
 voxel_model scene() { return test::random_model(40, 0.04f, 5, {-9, 2, -17}); }
 
-TEST(UserKernel, DenseGrid) { auto m = scene(); user_kernel_matches_cpu(dense_grid(m), m.bounds()); }
-TEST(UserKernel, Brickmap) { auto m = scene(); user_kernel_matches_cpu(brickmap<>(m), m.bounds()); }
-TEST(UserKernel, Naadf) { auto m = scene(); user_kernel_matches_cpu(naadf(m), m.bounds()); }
+TEST(UserKernel, DenseGrid) { auto m = scene(); user_kernel_matches_cpu(dense_grid(m), m.bounds(), "svdag"); }
+TEST(UserKernel, Brickmap) { auto m = scene(); user_kernel_matches_cpu(brickmap<>(m), m.bounds(), "dense_grid"); }
+TEST(UserKernel, Naadf) { auto m = scene(); user_kernel_matches_cpu(naadf(m), m.bounds(), "brickmap"); }
+TEST(UserKernel, Svdag) { auto m = scene(); user_kernel_matches_cpu(svdag(m), m.bounds(), "naadf"); }
 
 }  // namespace

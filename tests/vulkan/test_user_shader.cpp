@@ -18,6 +18,7 @@
 #include "voxray/cpu.hpp"
 #include "voxray/dense_grid/dense_grid.hpp"
 #include "voxray/naadf/naadf.hpp"
+#include "voxray/svdag/svdag.hpp"
 #include "voxray/vulkan.hpp"
 
 using namespace voxray;
@@ -96,5 +97,6 @@ voxel_model scene() { return test::random_model(40, 0.04f, 5, {-9, 2, -17}); }
 TEST(UserShader, DenseGrid) { auto m = scene(); user_shader_matches_cpu(dense_grid(m), m.bounds()); }
 TEST(UserShader, Brickmap) { auto m = scene(); user_shader_matches_cpu(brickmap<>(m), m.bounds()); }
 TEST(UserShader, Naadf) { auto m = scene(); user_shader_matches_cpu(naadf(m), m.bounds()); }
+TEST(UserShader, Svdag) { auto m = scene(); user_shader_matches_cpu(svdag(m), m.bounds()); }
 
 }  // namespace

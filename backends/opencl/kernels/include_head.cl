@@ -4,7 +4,8 @@
  *
  * Put its text in front of your kernel source (or #include it with -I<voxray prefix>/include):
  *
- *   #include "voxray/shaders/brickmap.cl"           // one structure per program
+ *   #include "voxray/shaders/brickmap.cl"           // several structures may share a program:
+ *   #include "voxray/shaders/naadf.cl"              // the dialect and each kernel are guarded
  *   __kernel void my_kernel(__global const uint* blob, __global const vx_ray* rays, ...) {
  *       vx_hit h = vx_brickmap_trace(blob, rays[get_global_id(0)], VX_MODE_CLOSEST);
  *   }

@@ -5,7 +5,8 @@
 //
 //   #version 450
 //   #extension GL_GOOGLE_include_directive : require
-//   #include "voxray/shaders/brickmap.glsl"        // one structure per shader
+//   #include "voxray/shaders/brickmap.glsl"        // several structures may share a shader:
+//   #include "voxray/shaders/naadf.glsl"           // the dialect and each kernel are guarded
 //   ...
 //   vx_hit h = vx_brickmap_trace(vx_words(blob_address), r, VX_MODE_CLOSEST);  // or VX_MODE_ANY
 //
