@@ -21,7 +21,12 @@
 //   std::vector<word_range> take_dirty_ranges();   // the words changed since the last call
 // and update(structure) on a non-const structure then sends only those words (cost
 // proportional to the edit). A structure whose blob changed size, or one without dirty
-// tracking, is sent whole.
+// tracking, is sent whole, except where the structure declares
+//   static constexpr bool growth_keeps_prefix = true;
+// (its blob only grows at the end when it grows, and its ranges name every word that
+// changed, below the old size and above it): a backend that offers grow_ranges() then
+// keeps the old words on the device and sends only the ranges (the brickmap's pool
+// doubling, say).
 //
 // A structure edited from other threads offers generations instead (brickmap does):
 //   frame snapshot() const;              // {lock, blob, generation}: writers wait meanwhile
@@ -69,6 +74,10 @@ template <class Structure>
 concept tracks_dirty_ranges = requires(Structure& s) {
     { s.take_dirty_ranges() } -> std::convertible_to<std::span<const word_range>>;
 };
+
+// See the top comment: growth at the end of the blob, with every changed word in the ranges.
+template <class S>
+concept grows_in_place = requires { requires S::growth_keeps_prefix; };
 
 // A structure edited in place through the shared editing vocabulary (edit/regions.hpp,
 // edit/edit_op.hpp), whose tracers then receive only the words that changed.
@@ -123,8 +132,7 @@ public:
     {
         if constexpr (syncs_by_generation<Structure>) {
             auto frame = structure.changes_since(generation_);  // writers wait meanwhile
-            if (frame.blob.size() != uploaded_words_) upload(frame.blob);
-            else engine_.update_ranges(frame.blob, frame.ranges);
+            send_ranges(frame.blob, frame.ranges);
             generation_ = frame.generation;
         } else {
             auto ranges = structure.take_dirty_ranges();  // always taken, so they never pile up
@@ -135,9 +143,7 @@ public:
     // The same with ranges taken by the caller: several tracers of one structure (one per
     // backend, say) take its dirty ranges once and pass them to each.
     void update(const Structure& structure, std::span<const word_range> ranges) {
-        std::span<const std::uint32_t> blob = structure.blob();
-        if (blob.size() != uploaded_words_) return upload(blob);
-        engine_.update_ranges(blob, ranges);
+        send_ranges(structure.blob(), ranges);
     }
 
     // Bytes the last construction or update sent to the backend (for the CPU backends:
@@ -222,6 +228,19 @@ private:
     void upload(std::span<const std::uint32_t> blob) {
         engine_.upload(blob);
         uploaded_words_ = blob.size();
+    }
+
+    // The words of `ranges`; the whole blob when its size changed, unless it grew in place.
+    void send_ranges(std::span<const std::uint32_t> blob, std::span<const word_range> ranges) {
+        if (blob.size() == uploaded_words_) return engine_.update_ranges(blob, ranges);
+        if constexpr (grows_in_place<Structure> && requires { engine_.grow_ranges(blob, ranges); }) {
+            if (blob.size() > uploaded_words_ && uploaded_words_ > 0) {
+                engine_.grow_ranges(blob, ranges);
+                uploaded_words_ = blob.size();
+                return;
+            }
+        }
+        upload(blob);
     }
 
     void trace(std::span<const ray> rays, std::span<hit> hits, std::uint32_t mode) {

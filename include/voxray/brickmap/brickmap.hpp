@@ -74,6 +74,9 @@ public:
     using payload_type = Payload;
     static constexpr int brick_edge = BrickEdge;
     static constexpr std::string_view name = "brickmap";
+    // The pool's doubling appends bricks and marks only the header (brickmap_capacity.hpp),
+    // so tracers keep the old words on the device (tracer.hpp, grows_in_place).
+    static constexpr bool growth_keeps_prefix = true;
     using kernel = kernels::brickmap_kernel;
 
     struct options {

@@ -2,8 +2,8 @@
 // turns cells into bricks and asks for growth when the pool or pages are full; the pool and page area grow by
 // doubling up to the blob limit (the last growth takes exactly what still fits, so the
 // documented 8 GiB holds), build() keeps headroom, and fills outside the world grow it
-// (world_growth.hpp). Every re-layout marks the whole blob dirty: the device buffer
-// changes size or the brick area moves.
+// (world_growth.hpp). Every re-layout marks the whole blob dirty (the brick area moves),
+// except the pool's doubling, which only appends bricks: it marks the header.
 #pragma once
 #include <algorithm>
 #include <cmath>
@@ -123,6 +123,10 @@ void brickmap<Payload, E>::grow(status st, std::uint32_t seen) {
                  " bytes (options::max_blob_bytes; 8 GiB at most)");
         relayout(page_capacity_, std::uint32_t(cap));
         resize_brick_state();
+        // The brick area grew at the end of the blob and nothing else moved: only the header
+        // changed below the old size (growth_keeps_prefix), and the new bricks are zero.
+        dirty_.add_range({0, VX_BM_HEADER_WORDS});
+        return;
     } else {
         if (page_capacity_ != seen) return;
         std::uint64_t cap = std::min<std::uint64_t>(2ull * seen, page_table_words());

@@ -113,6 +113,15 @@ public:
         count_upload(words * sizeof(std::uint32_t));
     }
 
+    // The blob grew and kept every old word in place (tracer.hpp, grows_in_place): the
+    // copy grows (new words zero) and takes only the words of `ranges`.
+    void grow_ranges(std::span<const std::uint32_t> blob, std::span<const word_range> ranges) {
+        if (borrow_ || blob.size() < blob_.size()) return upload(blob);
+        blob_.resize(blob.size(), 0u);
+        view_ = blob_;
+        update_ranges(blob, ranges);
+    }
+
     // Bytes the last upload or update copied, and their running total.
     std::uint64_t bytes_uploaded_last_update() const { return last_bytes_; }
     std::uint64_t bytes_uploaded_total() const { return total_bytes_; }

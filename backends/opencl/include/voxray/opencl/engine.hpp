@@ -99,6 +99,32 @@ public:
         count_upload(committer_.commit(queue_.get(), blob_.get(), blob, merged));
     }
 
+    // The blob grew and kept every old word in place (tracer.hpp, grows_in_place): the old
+    // words stay on the device (copied there into a larger buffer when this one is too
+    // small), the new ones start zero, and only the words of `ranges` are sent.
+    void grow_ranges(std::span<const std::uint32_t> blob, std::span<const word_range> ranges) {
+        if (!uploaded_ || blob.size() < blob_words_) return upload(blob);
+        std::uint64_t old_bytes = std::uint64_t(blob_words_) * sizeof(std::uint32_t);
+        std::uint64_t bytes = std::uint64_t(blob.size()) * sizeof(std::uint32_t);
+        check_alloc_limit("the structure blob", bytes, ctx_->max_alloc_bytes(), ctx_->device_name());
+        if (blob_.capacity() < bytes) {
+            device_buffer bigger{CL_MEM_READ_WRITE, "the structure blob"};
+            bigger.reserve(ctx_->context(), bytes);
+            check(clEnqueueCopyBuffer(queue_.get(), blob_.get(), bigger.get(), 0, 0, static_cast<std::size_t>(old_bytes), 0,
+                                      nullptr, nullptr),
+                  "clEnqueueCopyBuffer", "keeping the structure blob's words in a larger buffer");
+            std::swap(blob_, bigger);  // OpenCL keeps the old buffer alive until the copy is done
+        }
+        if (bytes > old_bytes) {
+            const cl_uint zero = 0;
+            check(clEnqueueFillBuffer(queue_.get(), blob_.get(), &zero, sizeof zero, static_cast<std::size_t>(old_bytes),
+                                      static_cast<std::size_t>(bytes - old_bytes), 0, nullptr, nullptr),
+                  "clEnqueueFillBuffer", "zeroing the structure blob's new words");
+        }
+        blob_words_ = blob.size();
+        update_ranges(blob, ranges);
+    }
+
     // Bytes the last upload or update sent to the device, and their running total.
     std::uint64_t bytes_uploaded_last_update() const { return last_bytes_; }
     std::uint64_t bytes_uploaded_total() const { return total_bytes_; }

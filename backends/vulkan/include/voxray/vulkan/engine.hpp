@@ -140,6 +140,33 @@ public:
         count_upload(committer_.commit(*ctx_, *commands_, blob_, blob, merged, !options_.force_staging));
     }
 
+    // The blob grew and kept every old word in place (tracer.hpp, grows_in_place): the old
+    // words stay on the device (copied there into a larger buffer when this one is too
+    // small), the new ones start zero, and only the words of `ranges` are sent.
+    void grow_ranges(std::span<const std::uint32_t> blob, std::span<const word_range> ranges) {
+        if (!blob_.handle() || blob.size() < blob_words_) return upload(blob);
+        VkDeviceSize old_bytes = VkDeviceSize(blob_words_) * sizeof(std::uint32_t), bytes = blob.size_bytes();
+        buffer bigger;
+        if (blob_.size() < bytes)
+            bigger = buffer(*ctx_, bytes, buffer_role::storage_upload, !options_.force_staging, "structure blob");
+        buffer& target = bigger.handle() ? bigger : blob_;
+        VkCommandBuffer cmd = commands_->begin();
+        if (bigger.handle() && old_bytes > 0) {
+            VkBufferCopy region{0, 0, old_bytes};
+            vkCmdCopyBuffer(cmd, blob_.handle(), bigger.handle(), 1, &region);
+        }
+        if (bytes > old_bytes) vkCmdFillBuffer(cmd, target.handle(), old_bytes, bytes - old_bytes, 0u);
+        // The commit shader and later traces read what the copy and fill wrote.
+        command_stream::barrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT,
+                                VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT,
+                                VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_TRANSFER_READ_BIT |
+                                    VK_ACCESS_TRANSFER_WRITE_BIT);
+        commands_->submit_and_wait();
+        if (bigger.handle()) blob_ = std::move(bigger);
+        blob_words_ = blob.size();
+        update_ranges(blob, ranges);
+    }
+
     // Bytes the last upload or update sent to the device, and their running total.
     std::uint64_t bytes_uploaded_last_update() const { return last_bytes_; }
     std::uint64_t bytes_uploaded_total() const { return total_bytes_; }
