@@ -4,6 +4,9 @@
 // a larger error merges more voxels into fewer blocks.
 #include <gtest/gtest.h>
 
+#include <limits>
+#include <string>
+
 #include "random_models.hpp"
 #include "special_rays.hpp"
 #include "voxray/check/compare.hpp"
@@ -78,6 +81,20 @@ TEST(svdag_colours, opencl) { colours_within_the_error<opencl>("opencl"); }
 #if VOXRAY_WITH_VULKAN
 TEST(svdag_colours, vulkan) { colours_within_the_error<vulkan>("vulkan"); }
 #endif
+
+TEST(svdag_colours, an_error_outside_0_1_says_so) {
+    voxel_model model = make_builtin("menger:27", 1);
+    for (float e : {-0.1f, 1.5f, std::numeric_limits<float>::quiet_NaN()}) {
+        svdag_options o;
+        o.colour_error = e;
+        try {
+            svdag_colours dag(model, o);
+            ADD_FAILURE() << "colour_error " << e << " was accepted";
+        } catch (const std::exception& x) {
+            EXPECT_NE(std::string(x.what()).find("is outside [0, 1]"), std::string::npos) << x.what();
+        }
+    }
+}
 
 TEST(svdag_colours, a_larger_error_gives_fewer_blocks) {
     voxel_model model = coloured_terrain();

@@ -112,6 +112,8 @@ struct built {
 };
 
 inline built build(const voxel_model& model, const svdag_options& options) {
+    if (options.attributes == svdag_attributes::colour_blocks && !(options.colour_error >= 0.0f && options.colour_error <= 1.0f))
+        fail("svdag: colour_error ", options.colour_error, " is outside [0, 1] (a channel difference, colours in [0, 1])");
     built result;
     svdag_stats& stats = result.stats;
     box3i bounds = model.bounds();
