@@ -5,7 +5,7 @@
 # (docs/bench/*.png) and the README's benchmark table from it.
 #
 # Sized for a small machine: 960 x 540 primary rays, 1 warm-up + 3 timed runs a row, meshes
-# voxelized at 512; about 5 minutes on 2 shared cores (231 rows). Override with WIDTH, HEIGHT, RUNS,
+# voxelized at 512; about 5 minutes on 2 shared cores (483 rows). Override with WIDTH, HEIGHT, RUNS,
 # RESOLUTION, SCENES (space-separated).
 set -euo pipefail
 source "$(dirname "${BASH_SOURCE[0]}")/setup.sh"
