@@ -102,6 +102,7 @@ if(CHECK_TOOL)
     find_program(GLSLANG glslangValidator)
     if(GLSLANG)
         set(name brickmap)
+        set(other dense_grid)  # two installed structures in one shader: the includes are guarded
         configure_file(${CMAKE_CURRENT_LIST_DIR}/../vulkan/user_trace.comp.in ${WORK_DIR}/user_trace.comp @ONLY)
         run(${GLSLANG} -V --target-env vulkan1.2 -I${prefix}/include -o ${WORK_DIR}/user_trace.spv ${WORK_DIR}/user_trace.comp)
     endif()
