@@ -13,7 +13,7 @@
 # The CPU side needs no CMake: the host header includes kernels/cpu_kernel.inc.
 
 # The shared dialect every kernel builds on, in dependency order.
-set(VOXRAY_KERNEL_COMMON kernels/prelude.h kernels/ray.h kernels/dda.h kernels/stack.h kernels/bits.h)
+set(VOXRAY_KERNEL_COMMON kernels/prelude.h kernels/ray.h kernels/dda.h kernels/stack.h kernels/bits.h svdag/walk.h)
 set(VOXRAY_GENERATED ${PROJECT_BINARY_DIR}/generated)
 file(MAKE_DIRECTORY ${VOXRAY_GENERATED}/voxray/generated ${VOXRAY_GENERATED}/voxray/shaders ${VOXRAY_GENERATED}/opencl ${VOXRAY_GENERATED}/vulkan)
 find_program(VOXRAY_CLANG NAMES clang clang-16 clang-15 clang-14 DOC "clang, to check OpenCL C kernels at build time")

@@ -149,7 +149,6 @@ VX_FN vx_u32 vx_brickmap_status(vx_bm_state s) { return s.w.status; }
 
 /* The hit record; any-hit (a constant `mode`) reads no payload. */
 VX_FN vx_hit vx_brickmap_finish(VX_BLOB blob, vx_brickmap g, vx_bm_state s, uint mode) {
-    vx_hit h;
     vx_mask is_hit = s.w.status == VX_STATUS_HIT;
     vx_u32 payload = vx_u32_splat(0u);
     if (mode == VX_MODE_CLOSEST) {
@@ -160,15 +159,7 @@ VX_FN vx_hit vx_brickmap_finish(VX_BLOB blob, vx_brickmap g, vx_bm_state s, uint
         vx_u32 shift = (bit & ((1u << g.values_per_word_bits) - 1u)) * g.payload_bits;
         payload = vx_sel(in_brick, (word >> shift) & g.payload_mask, VX_BM_CELL_VALUE(s.cell));
     }
-    h.t = vx_sel(is_hit, s.w.t, VX_INF);
-    h.x = vx_sel(is_hit, s.w.cx + g.ox, 0);
-    h.y = vx_sel(is_hit, s.w.cy + g.oy, 0);
-    h.z = vx_sel(is_hit, s.w.cz + g.oz, 0);
-    h.face = vx_sel(is_hit, s.w.face, VX_FACE_NONE);
-    h.material = vx_sel(is_hit, payload, 0u);
-    h.steps = s.w.steps;
-    h.status = s.w.status;
-    return h;
+    return vx_hit_from_walk(s.w, g.ox, g.oy, g.oz, payload);
 }
 
 /* Closest hit, or any hit (the first solid voxel serves both; any-hit skips the payload). */

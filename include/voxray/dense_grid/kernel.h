@@ -50,7 +50,6 @@ VX_FN vx_dda vx_dense_grid_step(VX_BLOB blob, vx_dense_grid g, vx_dda d) {
 
 /* The hit record; any-hit (a constant `mode`) reads no material. */
 VX_FN vx_hit vx_dense_grid_finish(VX_BLOB blob, vx_dense_grid g, vx_dda d, uint mode) {
-    vx_hit h;
     vx_mask is_hit = d.status == VX_STATUS_HIT;
     vx_u32 word = vx_u32_splat(0u);
     vx_u32 cell_bit = vx_i2u(VX_DG_LOCAL(d.cx, d.cy, d.cz));
@@ -59,15 +58,7 @@ VX_FN vx_hit vx_dense_grid_finish(VX_BLOB blob, vx_dense_grid g, vx_dda d, uint 
         vx_mask present = chunk != VX_DG_EMPTY_CHUNK;
         word = vx_gather_masked(blob, present, chunk + VX_DG_MATERIAL_WORD(cell_bit));
     }
-    h.t = vx_sel(is_hit, d.t, VX_INF);
-    h.x = vx_sel(is_hit, d.cx + g.ox, 0);
-    h.y = vx_sel(is_hit, d.cy + g.oy, 0);
-    h.z = vx_sel(is_hit, d.cz + g.oz, 0);
-    h.face = vx_sel(is_hit, d.face, VX_FACE_NONE);
-    h.material = (word >> VX_DG_MATERIAL_SHIFT(cell_bit)) & 255u;
-    h.steps = d.steps;
-    h.status = d.status;
-    return h;
+    return vx_hit_from_walk(d, g.ox, g.oy, g.oz, (word >> VX_DG_MATERIAL_SHIFT(cell_bit)) & 255u);
 }
 
 VX_FN vx_u32 vx_dense_grid_status(vx_dda d) { return d.status; }

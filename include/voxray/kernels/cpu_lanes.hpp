@@ -60,6 +60,7 @@ inline void vx_select_state_into(bool m, const State& a, State& into) {
 #include "voxray/kernels/dda.h"
 #include "voxray/kernels/stack.h"
 #include "voxray/kernels/bits.h"
+#include "voxray/svdag/walk.h"
 }  // namespace scalar
 
 // Each SIMD lane set is compiled for its own ISA whatever the build flags (GCC: a target

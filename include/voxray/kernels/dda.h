@@ -292,3 +292,20 @@ VX_FN vx_dda vx_dda_leave_box(vx_dda d, vx_f32 dx, vx_f32 dy, vx_f32 dz, vx_i32 
     d.steps = d.steps + vx_sel(m, 1u, 0u);
     return d;
 }
+
+/* The hit record of a walk that ended (hit, miss or past tmax): t, voxel (world position:
+ * walk cell plus the world position (ox, oy, oz) of walk cell 0), face and material where
+ * it hit, the step count and status always. Every structure's kernel ends with it. */
+VX_FN vx_hit vx_hit_from_walk(vx_dda d, int ox, int oy, int oz, vx_u32 material) {
+    vx_hit h;
+    vx_mask is_hit = d.status == VX_STATUS_HIT;
+    h.t = vx_sel(is_hit, d.t, VX_INF);
+    h.x = vx_sel(is_hit, d.cx + ox, 0);
+    h.y = vx_sel(is_hit, d.cy + oy, 0);
+    h.z = vx_sel(is_hit, d.cz + oz, 0);
+    h.face = vx_sel(is_hit, d.face, VX_FACE_NONE);
+    h.material = vx_sel(is_hit, material, 0u);
+    h.steps = d.steps;
+    h.status = d.status;
+    return h;
+}

@@ -118,18 +118,8 @@ VX_FN vx_u32 vx_naadf_status(vx_na_state s) { return s.w.status; }
 /* The hit record; the type was kept at the hit step (any-hit reports none, like the
  * other structures). */
 VX_FN vx_hit vx_naadf_finish(VX_BLOB blob, vx_naadf g, vx_na_state s, uint mode) {
-    vx_hit h;
-    vx_mask is_hit = s.w.status == VX_STATUS_HIT;
     VX_UNUSED(blob);
-    h.t = vx_sel(is_hit, s.w.t, VX_INF);
-    h.x = vx_sel(is_hit, s.w.cx + g.ox, 0);
-    h.y = vx_sel(is_hit, s.w.cy + g.oy, 0);
-    h.z = vx_sel(is_hit, s.w.cz + g.oz, 0);
-    h.face = vx_sel(is_hit, s.w.face, VX_FACE_NONE);
-    h.material = vx_sel(is_hit && mode == VX_MODE_CLOSEST, s.type, 0u);
-    h.steps = s.w.steps;
-    h.status = s.w.status;
-    return h;
+    return vx_hit_from_walk(s.w, g.ox, g.oy, g.oz, mode == VX_MODE_CLOSEST ? s.type : vx_u32_splat(0u));
 }
 
 /* Closest hit, or any hit (the first solid voxel serves both; any-hit skips the type). */

@@ -76,9 +76,21 @@ struct level_items {
     std::vector<std::uint32_t> ids;
 };
 
+// The leaves of a DAG in depth-first (Morton) order: each one's Morton key (of its 4^3
+// brick's coordinates in the cube), its 64-bit mask, and the attributes of the solid
+// voxels in depth-first order: payload bytes, or (colour blocks built from colours rather
+// than palette indices) RGBA8 colours.
 struct leaf_scan {
     std::vector<std::uint64_t> keys, masks;
     std::vector<std::uint8_t> payload;
+    std::vector<std::uint32_t> colours;
+};
+
+// Where a DAG's cube lies: its depth D, and the header's origin, extent and shift
+// (svdag/layout.h). The leaves' keys are relative to the cube.
+struct dag_frame {
+    glm::ivec3 origin{0}, extent{0}, shift{0};
+    int depth = VX_SV_MIN_DEPTH;
 };
 
 // The leaves and depth-first payload of the chunks [begin, end) (sorted by Morton key).
@@ -111,49 +123,16 @@ struct built {
     svdag_stats stats;
 };
 
-inline built build(const voxel_model& model, const svdag_options& options) {
+// Steps 2 and 3: merges the leaves into the DAG and lays out its blob. `pal` maps payload
+// bytes to colours for colour blocks (unused when the leaves carry colours).
+inline built assemble(leaf_scan leaves, const dag_frame& frame, const svdag_options& options, const palette* pal) {
     if (options.attributes == svdag_attributes::colour_blocks && !(options.colour_error >= 0.0f && options.colour_error <= 1.0f))
         fail("svdag: colour_error ", options.colour_error, " is outside [0, 1] (a channel difference, colours in [0, 1])");
+    if (leaves.keys.size() >= UINT32_MAX) fail("svdag: ", leaves.keys.size(), " leaves, above the limit of 2^32");
     built result;
     svdag_stats& stats = result.stats;
-    box3i bounds = model.bounds();
-    glm::ivec3 extent = bounds.empty() ? glm::ivec3(0) : bounds.extent();
-    glm::ivec3 cube_origin = bounds.empty() ? glm::ivec3(0)
-                                            : glm::ivec3(floor_div16(bounds.min.x), floor_div16(bounds.min.y),
-                                                         floor_div16(bounds.min.z)) * 16;
-    glm::ivec3 shift = bounds.empty() ? glm::ivec3(0) : bounds.min - cube_origin;
-    int reach = std::max({shift.x + extent.x, shift.y + extent.y, shift.z + extent.z, 1});
-    int depth = std::max(VX_SV_MIN_DEPTH, int(std::bit_width(unsigned(reach - 1))));
-    if (depth > VX_SV_MAX_DEPTH)
-        fail("svdag: a world ", extent.x, " x ", extent.y, " x ", extent.z, " voxels needs a cube of 2^", depth,
-             " voxels a side; the limit is 2^", VX_SV_MAX_DEPTH, " (the traversal's stack depth)");
-    if (model.voxel_count() >= (std::uint64_t(1) << 32))
-        fail("svdag: ", model.voxel_count(), " solid voxels, above the limit of 2^32 (32-bit voxel counts)");
+    int depth = frame.depth;
     stats.depth = depth;
-
-    // 1. Leaves and payload, chunk by chunk in Morton order.
-    std::vector<std::pair<std::uint64_t, const voxel_model::chunk*>> chunks;
-    chunks.reserve(model.chunk_count());
-    model.for_each_chunk([&](glm::ivec3 origin, const voxel_model::chunk& c) {
-        glm::uvec3 cc = glm::uvec3((origin - cube_origin) / 16);
-        chunks.emplace_back(morton3(cc.x, cc.y, cc.z), &c);
-    });
-    std::sort(chunks.begin(), chunks.end(), [](auto& a, auto& b) { return a.first < b.first; });
-    unsigned threads = resolve_build_threads(options.threads, chunks.size() / 64 + 1);
-    std::vector<leaf_scan> parts(threads);
-    run_build_threads(threads, [&](unsigned t) {
-        std::size_t begin = chunks.size() * t / threads, end = chunks.size() * (t + 1) / threads;
-        scan_chunks(std::span(chunks).subspan(begin, end - begin), parts[t]);
-    });
-    leaf_scan leaves;
-    for (auto& p : parts) {
-        leaves.keys.insert(leaves.keys.end(), p.keys.begin(), p.keys.end());
-        leaves.masks.insert(leaves.masks.end(), p.masks.begin(), p.masks.end());
-        leaves.payload.insert(leaves.payload.end(), p.payload.begin(), p.payload.end());
-        p = {};
-    }
-    if (leaves.keys.size() >= UINT32_MAX) fail("svdag: ", leaves.keys.size(), " leaves, above the limit of 2^32");
-
     // 2. Merge level by level: leaves (depth D - 2), then interior levels up to the root.
     int leaf_depth = depth - VX_SV_LEAF_EDGE_BITS;
     auto merged_leaves = dedup_level(leaves.masks, options.threads, [](std::uint64_t m) { return mix64(m); },
@@ -222,8 +201,10 @@ inline built build(const voxel_model& model, const svdag_options& options) {
     std::uint64_t attribute_words;
     if (options.attributes == svdag_attributes::exact) {
         attribute_words = (leaves.payload.size() + 3) / 4;
+    } else if (!leaves.colours.empty() || leaves.payload.empty()) {
+        blocks = encode_colour_blocks(leaves.colours, options.colour_error);
     } else {
-        blocks = encode_colour_blocks(leaves.payload, model.palette(), options.colour_error);
+        blocks = encode_colour_blocks(leaves.payload, *pal, options.colour_error);
         attribute_words = 2 * std::uint64_t(blocks.starts.size());
     }
     std::uint64_t total = node_end + attribute_words;
@@ -237,9 +218,9 @@ inline built build(const voxel_model& model, const svdag_options& options) {
     w[VX_SV_HEADER_MAGIC] = VX_SV_MAGIC;
     w[VX_SV_HEADER_VERSION] = VX_SV_VERSION;
     for (int a = 0; a < 3; ++a) {
-        w[VX_SV_HEADER_ORIGIN + a] = std::uint32_t(bounds.empty() ? 0 : bounds.min[a]);
-        w[VX_SV_HEADER_EXTENT + a] = std::uint32_t(extent[a]);
-        w[VX_SV_HEADER_SHIFT + a] = std::uint32_t(shift[a]);
+        w[VX_SV_HEADER_ORIGIN + a] = std::uint32_t(frame.origin[a]);
+        w[VX_SV_HEADER_EXTENT + a] = std::uint32_t(frame.extent[a]);
+        w[VX_SV_HEADER_SHIFT + a] = std::uint32_t(frame.shift[a]);
     }
     w[VX_SV_HEADER_DEPTH] = std::uint32_t(depth);
     w[VX_SV_HEADER_ROOT] = VX_SV_HEADER_WORDS;
@@ -284,5 +265,47 @@ inline built build(const voxel_model& model, const svdag_options& options) {
     return result;
 }
 
+// Step 1 for a voxel model (the cube fitted to its bounds), then assemble.
+inline built build(const voxel_model& model, const svdag_options& options) {
+    box3i bounds = model.bounds();
+    glm::ivec3 extent = bounds.empty() ? glm::ivec3(0) : bounds.extent();
+    glm::ivec3 cube_origin = bounds.empty() ? glm::ivec3(0)
+                                            : glm::ivec3(floor_div16(bounds.min.x), floor_div16(bounds.min.y),
+                                                         floor_div16(bounds.min.z)) * 16;
+    glm::ivec3 shift = bounds.empty() ? glm::ivec3(0) : bounds.min - cube_origin;
+    int reach = std::max({shift.x + extent.x, shift.y + extent.y, shift.z + extent.z, 1});
+    int depth = std::max(VX_SV_MIN_DEPTH, int(std::bit_width(unsigned(reach - 1))));
+    if (depth > VX_SV_MAX_DEPTH)
+        fail("svdag: a world ", extent.x, " x ", extent.y, " x ", extent.z, " voxels needs a cube of 2^", depth,
+             " voxels a side; the limit is 2^", VX_SV_MAX_DEPTH, " (the traversal's stack depth)");
+    if (model.voxel_count() >= (std::uint64_t(1) << 32))
+        fail("svdag: ", model.voxel_count(), " solid voxels, above the limit of 2^32 (32-bit voxel counts)");
+    dag_frame frame{bounds.empty() ? glm::ivec3(0) : bounds.min, extent, shift, depth};
+
+    // 1. Leaves and payload, chunk by chunk in Morton order.
+    std::vector<std::pair<std::uint64_t, const voxel_model::chunk*>> chunks;
+    chunks.reserve(model.chunk_count());
+    model.for_each_chunk([&](glm::ivec3 origin, const voxel_model::chunk& c) {
+        glm::uvec3 cc = glm::uvec3((origin - cube_origin) / 16);
+        chunks.emplace_back(morton3(cc.x, cc.y, cc.z), &c);
+    });
+    std::sort(chunks.begin(), chunks.end(), [](auto& a, auto& b) { return a.first < b.first; });
+    unsigned threads = resolve_build_threads(options.threads, chunks.size() / 64 + 1);
+    std::vector<leaf_scan> parts(threads);
+    run_build_threads(threads, [&](unsigned t) {
+        std::size_t begin = chunks.size() * t / threads, end = chunks.size() * (t + 1) / threads;
+        scan_chunks(std::span(chunks).subspan(begin, end - begin), parts[t]);
+    });
+    leaf_scan leaves;
+    for (auto& p : parts) {
+        leaves.keys.insert(leaves.keys.end(), p.keys.begin(), p.keys.end());
+        leaves.masks.insert(leaves.masks.end(), p.masks.begin(), p.masks.end());
+        leaves.payload.insert(leaves.payload.end(), p.payload.begin(), p.payload.end());
+        p = {};
+    }
+    return assemble(std::move(leaves), frame, options, &model.palette());
+}
+
 }  // namespace svdag_build
 }  // namespace voxray
+

@@ -26,12 +26,13 @@ struct colour_blocks {
 };
 
 // A block grows while every colour in it stays within max_error of the running average
-// (tracked through the per-channel min and max, so each voxel costs O(1)).
-inline colour_blocks encode_colour_blocks(std::span<const std::uint8_t> payload, const palette& pal, float max_error) {
+// (tracked through the per-channel min and max, so each voxel costs O(1)). `colours` are
+// RGBA8 (pack_rgba) in depth-first order; only RGB is compared and averaged.
+inline colour_blocks encode_colour_blocks(std::span<const std::uint32_t> colours, float max_error) {
     colour_blocks out;
-    auto channels = [&](std::uint8_t index) {
-        rgba c = pal[index].colour;
-        return std::array<float, 3>{c.r / 255.0f, c.g / 255.0f, c.b / 255.0f};
+    auto channels = [](std::uint32_t c) {
+        return std::array<float, 3>{float(c & 255u) / 255.0f, float((c >> 8) & 255u) / 255.0f,
+                                    float((c >> 16) & 255u) / 255.0f};
     };
     std::array<double, 3> sum{}, lo{}, hi{};
     std::size_t length = 0;
@@ -43,8 +44,8 @@ inline colour_blocks encode_colour_blocks(std::span<const std::uint8_t> payload,
         avg.b = std::uint8_t(std::lround(sum[2] / double(length) * 255.0));
         out.colours.push_back(pack_rgba(avg));
     };
-    for (std::size_t i = 0; i < payload.size(); ++i) {
-        auto c = channels(payload[i]);
+    for (std::size_t i = 0; i < colours.size(); ++i) {
+        auto c = channels(colours[i]);
         bool fits = length > 0;
         for (int k = 0; k < 3 && fits; ++k) {
             double avg = (sum[k] + c[k]) / double(length + 1);
@@ -64,14 +65,22 @@ inline colour_blocks encode_colour_blocks(std::span<const std::uint8_t> payload,
     // The error each voxel ends up with, after the average is rounded to 8 bits.
     double total = 0;
     std::size_t block = 0;
-    for (std::size_t i = 0; i < payload.size(); ++i) {
+    for (std::size_t i = 0; i < colours.size(); ++i) {
         while (block + 1 < out.starts.size() && out.starts[block + 1] <= i) ++block;
-        double error = colour_difference(out.colours[block], pal[payload[i]].colour);
+        std::uint32_t c = colours[i];
+        double error = colour_difference(out.colours[block], rgba{std::uint8_t(c), std::uint8_t(c >> 8), std::uint8_t(c >> 16)});
         out.max_error = std::max(out.max_error, error);
         total += error;
     }
-    out.mean_error = payload.empty() ? 0.0 : total / double(payload.size());
+    out.mean_error = colours.empty() ? 0.0 : total / double(colours.size());
     return out;
+}
+
+// Palette indices: the blocks of their palette colours.
+inline colour_blocks encode_colour_blocks(std::span<const std::uint8_t> payload, const palette& pal, float max_error) {
+    std::vector<std::uint32_t> colours(payload.size());
+    for (std::size_t i = 0; i < payload.size(); ++i) colours[i] = pack_rgba(pal[payload[i]].colour);
+    return encode_colour_blocks(colours, max_error);
 }
 
 }  // namespace voxray::svdag_build
