@@ -3,7 +3,7 @@
 # required (a missing OpenCL or Vulkan device fails, it does not skip). Then three CPU-only
 # passes, each a build without OpenCL, Vulkan and Embree (which also proves such a build
 # works) that configures and runs only the test folders its ctest labels select:
-#   ASan + UBSan  every CPU label (cpu, io, mesh, malformed, brickmap, naadf, sync, conformance, nanovdb);
+#   ASan + UBSan  every CPU label (cpu, io, mesh, malformed, brickmap, naadf, svdag, world, sync, conformance, nanovdb);
 #   TSan          brickmap, naadf and sync: the threaded editing and the incremental updates;
 #   clang++-14    every CPU label, built with clang instead of g++.
 # and one more ASan + UBSan pass with OpenCL and Vulkan: every test labelled opencl or
@@ -20,7 +20,7 @@ echo "== ctest (all backends required)"
 export VOXRAY_REQUIRE_ALL_BACKENDS=1
 (cd "$BUILD_DIR" && ctest --output-on-failure -j"$(nproc)" --timeout 900)
 
-CPU_LABELS='^(cpu|io|mesh|malformed|brickmap|naadf|svdag|sync|conformance|nanovdb)$'
+CPU_LABELS='^(cpu|io|mesh|malformed|brickmap|naadf|svdag|world|sync|conformance|nanovdb)$'
 CPU_ONLY=(-DCMAKE_DISABLE_FIND_PACKAGE_OpenCL=ON -DCMAKE_DISABLE_FIND_PACKAGE_Vulkan=ON
           -DCMAKE_DISABLE_FIND_PACKAGE_embree=ON -DVOXRAY_BUILD_TOOLS=OFF)
 # Sanitizer builds: -O1 with line tables only, which compiles about twice as fast as -O2 -g.
