@@ -19,6 +19,7 @@
 #include "voxray/core/checksum.hpp"
 #include "voxray/svdag/builder.hpp"
 #include "voxray/svdag/validate.hpp"
+#include "voxray/world/chunk_build.hpp"
 #include "voxray/world/chunk_file.hpp"
 
 namespace voxray {
@@ -118,13 +119,7 @@ chunk_record make_record(const voxel_model& m, int bits, svdag_attributes a, chu
 
 // An empty chunk: the builder's empty DAG with the chunk's depth and extent.
 chunk_record empty_record(int bits, svdag_attributes a) {
-    chunk_record r;
-    r.key = {0, {5, -6, 7}};
-    r.chunk_bits = bits;
-    r.dag = svdag_build::build(voxel_model{}, attributes(a)).words;
-    r.dag[VX_SV_HEADER_DEPTH] = std::uint32_t(bits);
-    for (int k = 0; k < 3; ++k) r.dag[VX_SV_HEADER_EXTENT + k] = 1u << bits;
-    return r;
+    return build_chunk(chunk_voxels{}, {0, {5, -6, 7}}, bits, chunk_dag_options{a});
 }
 
 void expect_same(const chunk_record& a, const chunk_record& b) {

@@ -198,15 +198,15 @@ inline built assemble(leaf_scan leaves, const dag_frame& frame, const svdag_opti
     std::uint64_t node_end = cursor;
 
     colour_blocks blocks;
-    std::uint64_t attribute_words;
+    std::uint64_t attribute_words = 0;
     if (options.attributes == svdag_attributes::exact) {
         attribute_words = (leaves.payload.size() + 3) / 4;
     } else if (!leaves.colours.empty() || leaves.payload.empty()) {
         blocks = encode_colour_blocks(leaves.colours, options.colour_error);
     } else {
         blocks = encode_colour_blocks(leaves.payload, *pal, options.colour_error);
-        attribute_words = 2 * std::uint64_t(blocks.starts.size());
     }
+    if (options.attributes == svdag_attributes::colour_blocks) attribute_words = 2 * std::uint64_t(blocks.starts.size());
     std::uint64_t total = node_end + attribute_words;
     if (total * 4 > options.max_blob_bytes)
         fail("svdag: the blob would be ", total * 4, " bytes (", node_end * 4, " of geometry, ", attribute_words * 4,

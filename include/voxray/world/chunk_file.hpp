@@ -37,6 +37,7 @@
 #include "voxray/core/error.hpp"
 #include "voxray/svdag/layout.h"
 #include "voxray/svdag/validate.hpp"
+#include "voxray/world/chunk.hpp"
 
 namespace voxray {
 
@@ -45,28 +46,13 @@ static_assert(std::endian::native == std::endian::little, "chunk files assume a 
 inline constexpr std::uint32_t chunk_file_magic = 0x4b435856u;  // "VXCK"
 inline constexpr std::uint32_t chunk_file_version = 1;
 inline constexpr std::size_t chunk_file_header_bytes = 80;
-inline constexpr int chunk_min_bits = 4, chunk_max_bits = 10;
-inline constexpr int chunk_max_lod = 20;
+inline constexpr int chunk_min_bits = VX_WD_MIN_CHUNK_BITS, chunk_max_bits = VX_WD_MAX_CHUNK_BITS;
+inline constexpr int chunk_max_lod = VX_WD_MAX_LOD;
 
 namespace chunk_file_offset {
 inline constexpr std::size_t magic = 0, version = 4, lod = 8, cell = 12, chunk_bits = 24, solid_min = 28,
                              solid_max = 40, source_hash = 52, voxel_count = 56, dag_words = 64, checksum = 72;
 }
-
-struct chunk_key {
-    int lod = 0;
-    glm::ivec3 cell{0};  // the chunk's coordinates in the grid of its LOD
-    bool operator==(const chunk_key&) const = default;
-};
-
-struct chunk_record {
-    chunk_key key;
-    int chunk_bits = 8;                          // C = 2^chunk_bits; the DAG's depth
-    glm::ivec3 solid_min{0}, solid_max{-1};      // inclusive, in [0, C); empty when max < min
-    std::uint64_t voxel_count = 0;               // solid voxels (== the DAG root's count)
-    std::uint32_t source_hash = 0;               // opaque: e.g. a hash of the build options
-    blob_words dag;                              // svdag/layout.h
-};
 
 // dir/lod<l>/<x>_<y>_<z>.vxck; negative cells keep their sign ("lod0/-3_0_12.vxck").
 inline std::filesystem::path chunk_file_path(const std::filesystem::path& dir, const chunk_key& k) {

@@ -108,7 +108,7 @@ public:
     }
     // Any cut: each placement stands for the cells of its region, finer ones over coarser.
     void show(std::span<const placement> cut) {
-        words_ = pack_world(grid_, bounds_, cut, options_.attributes);
+        words_ = pack_world(grid_, cut, options_.attributes);
         stats_.shown_chunks = 0;
         stats_.shown_bytes = 0;
         for (auto& p : cut)

@@ -111,8 +111,8 @@ struct directory {
 // The blob for a cut: `cut` is applied coarse to fine, so a finer chunk stands for its
 // cells where a coarser one covers them too (a chunk not resident is traced at the finest
 // resident LOD above it, when the caller passes the resident ones). Cells no placement
-// covers have no voxels.
-inline blob_words pack_world(const world_grid& g, box3i bounds, std::span<const placement> cut, svdag_attributes attributes) {
+// covers have no voxels. The walk spans the shown chunks' solid boxes.
+inline blob_words pack_world(const world_grid& g, std::span<const placement> cut, svdag_attributes attributes) {
     std::uint32_t kind = attributes == svdag_attributes::exact ? VX_SV_ATTRIBUTES_EXACT : VX_SV_ATTRIBUTES_COLOUR_BLOCKS;
     std::vector<placement> order(cut.begin(), cut.end());
     std::stable_sort(order.begin(), order.end(), [](const placement& a, const placement& b) { return a.key.lod > b.key.lod; });
@@ -152,7 +152,16 @@ inline blob_words pack_world(const world_grid& g, box3i bounds, std::span<const 
     blob_words w(words, 0u);
     w[VX_WD_HEADER_MAGIC] = VX_WD_MAGIC;
     w[VX_WD_HEADER_VERSION] = VX_WD_VERSION;
-    glm::ivec3 extent = bounds.empty() ? glm::ivec3(0) : bounds.extent();
+    // The walk covers the shown chunks' solid boxes (a coarse voxel may reach past the
+    // finest data's bounds), and starts at their min corner, as the reference's does.
+    box3i bounds;
+    for (auto& e : dir.entries) {
+        const chunk_record& c = *e.chunk;
+        glm::ivec3 base = g.origin + ((e.key.cell << e.key.lod) << g.chunk_bits);
+        bounds.include(base + (c.solid_min << e.key.lod));
+        bounds.include(base + ((c.solid_max + 1) << e.key.lod) - 1);
+    }
+    glm::ivec3 extent = bounds.extent();
     glm::ivec3 start = bounds.empty() ? g.origin : bounds.min;
     for (int a = 0; a < 3; ++a) {
         w[VX_WD_HEADER_ORIGIN + a] = std::uint32_t(start[a]);
