@@ -108,88 +108,118 @@ struct directory {
 
 }  // namespace world_pack
 
-// The blob for a cut: `cut` is applied coarse to fine, so a finer chunk stands for its
-// cells where a coarser one covers them too (a chunk not resident is traced at the finest
-// resident LOD above it, when the caller passes the resident ones). Cells no placement
-// covers have no voxels. The walk spans the shown chunks' solid boxes.
+// The header and directory words of a cut, for DAGs placed wherever the caller puts
+// them (after the directory in one blob, pack_world; or in a pool, world/streamed_world.hpp).
+// `cut` is applied coarse to fine, so a finer chunk stands for its cells where a coarser
+// one covers them too (a chunk not resident is traced at the finest resident LOD above it,
+// when the caller passes the resident ones). Cells no placement covers have no voxels.
+class world_directory {
+public:
+    world_directory(const world_grid& g, std::span<const placement> cut, svdag_attributes attributes)
+        : grid_(g), kind_(attributes == svdag_attributes::exact ? VX_SV_ATTRIBUTES_EXACT : VX_SV_ATTRIBUTES_COLOUR_BLOCKS) {
+        std::vector<placement> order(cut.begin(), cut.end());
+        std::stable_sort(order.begin(), order.end(), [](const placement& a, const placement& b) { return a.key.lod > b.key.lod; });
+        for (auto& p : order) {
+            if (p.key.lod < 0 || p.key.lod > g.top_lod)
+                fail("world: a chunk of LOD ", p.key.lod, " in a world whose LODs are 0..", g.top_lod);
+            if (p.chunk && !p.chunk->empty()) {
+                if (p.chunk->chunk_bits != g.chunk_bits)
+                    fail("world: a chunk of 2^", p.chunk->chunk_bits, " voxels a side in a world of 2^", g.chunk_bits, " chunks");
+                if (p.chunk->dag.size() <= VX_SV_HEADER_WORDS || p.chunk->dag[VX_SV_HEADER_ATTRIBUTE_KIND] != kind_)
+                    fail("world: chunk (LOD ", p.key.lod, ", ", p.key.cell.x, " ", p.key.cell.y, " ", p.key.cell.z,
+                         ") has other attributes than its world");
+            }
+            dir_.insert(p, g.top_lod + 1);
+        }
+        for (auto& s : dir_.nodes[0]) s = dir_.collapse(s);
+        // Word offsets: the header, the nodes reachable from the root (breadth first), entries.
+        node_at_.assign(dir_.nodes.size(), -1);
+        words_ = VX_WD_HEADER_WORDS;
+        std::vector<std::uint32_t> reach{0};
+        for (std::size_t i = 0; i < reach.size(); ++i) {
+            node_at_[reach[i]] = std::int64_t(words_);
+            words_ += VX_WD_NODE_WORDS;
+            for (auto& s : dir_.nodes[reach[i]])
+                if (s.kind == world_pack::slot::node) reach.push_back(s.index);
+        }
+        entries_at_ = words_;
+        words_ += VX_WD_ENTRY_WORDS * dir_.entries.size();
+    }
+
+    // Header and directory words.
+    std::uint64_t words() const { return words_; }
+    // The chunks the directory refers to, once each, in entry order.
+    std::vector<const chunk_record*> chunks() const {
+        std::vector<const chunk_record*> out;
+        for (auto& e : dir_.entries)
+            if (std::find(out.begin(), out.end(), e.chunk) == out.end()) out.push_back(e.chunk);
+        return out;
+    }
+
+    // Writes words [0, words()) of the blob; dag_at(chunk) is where the chunk's DAG lies.
+    template <class DagAt>
+    void write(std::span<std::uint32_t> w, DagAt&& dag_at) const {
+        // The walk covers the shown chunks' solid boxes (a coarse voxel may reach past the
+        // finest data's bounds), and starts at their min corner, as the reference's does.
+        box3i bounds;
+        for (auto& e : dir_.entries) {
+            const chunk_record& c = *e.chunk;
+            glm::ivec3 base = grid_.origin + ((e.key.cell << e.key.lod) << grid_.chunk_bits);
+            bounds.include(base + (c.solid_min << e.key.lod));
+            bounds.include(base + ((c.solid_max + 1) << e.key.lod) - 1);
+        }
+        glm::ivec3 extent = bounds.extent();
+        glm::ivec3 start = bounds.empty() ? grid_.origin : bounds.min;
+        std::fill(w.begin(), w.begin() + std::ptrdiff_t(words_), 0u);
+        w[VX_WD_HEADER_MAGIC] = VX_WD_MAGIC;
+        w[VX_WD_HEADER_VERSION] = VX_WD_VERSION;
+        for (int a = 0; a < 3; ++a) {
+            w[VX_WD_HEADER_ORIGIN + a] = std::uint32_t(start[a]);
+            w[VX_WD_HEADER_EXTENT + a] = std::uint32_t(extent[a]);
+            w[VX_WD_HEADER_SHIFT + a] = std::uint32_t(start[a] - grid_.origin[a]);
+        }
+        w[VX_WD_HEADER_CHUNK_BITS] = std::uint32_t(grid_.chunk_bits);
+        w[VX_WD_HEADER_ROOT_LEVEL] = std::uint32_t(grid_.top_lod + 1);
+        w[VX_WD_HEADER_ROOT] = VX_WD_HEADER_WORDS;
+        w[VX_WD_HEADER_ATTRIBUTE_KIND] = kind_;
+        for (std::size_t n = 0; n < dir_.nodes.size(); ++n) {
+            if (node_at_[n] < 0) continue;
+            for (std::size_t o = 0; o < 8; ++o) {
+                const auto& s = dir_.nodes[n][o];
+                std::uint64_t child = s.kind == world_pack::slot::node ? std::uint64_t(node_at_[s.index])
+                                      : s.kind == world_pack::slot::entry
+                                          ? (entries_at_ + VX_WD_ENTRY_WORDS * s.index) | VX_WD_CHILD_IS_ENTRY
+                                          : 0u;
+                w[std::size_t(node_at_[n]) + o] = std::uint32_t(child);
+            }
+        }
+        for (std::size_t i = 0; i < dir_.entries.size(); ++i) {
+            const chunk_record& c = *dir_.entries[i].chunk;
+            std::uint64_t e = entries_at_ + VX_WD_ENTRY_WORDS * i;
+            w[e + VX_WD_ENTRY_DAG] = std::uint32_t(dag_at(&c));
+            w[e + VX_WD_ENTRY_LOD] = std::uint32_t(dir_.entries[i].key.lod);
+            w[e + VX_WD_ENTRY_BOX_MIN] = pack_chunk_voxel(c.solid_min);
+            w[e + VX_WD_ENTRY_BOX_MAX] = pack_chunk_voxel(c.solid_max);
+        }
+    }
+
+private:
+    world_grid grid_;
+    std::uint32_t kind_;
+    world_pack::directory dir_;
+    std::vector<std::int64_t> node_at_;
+    std::uint64_t words_ = 0, entries_at_ = 0;
+};
+
+// The whole blob of a cut: header, directory, then each chunk's DAG once.
 inline blob_words pack_world(const world_grid& g, std::span<const placement> cut, svdag_attributes attributes) {
-    std::uint32_t kind = attributes == svdag_attributes::exact ? VX_SV_ATTRIBUTES_EXACT : VX_SV_ATTRIBUTES_COLOUR_BLOCKS;
-    std::vector<placement> order(cut.begin(), cut.end());
-    std::stable_sort(order.begin(), order.end(), [](const placement& a, const placement& b) { return a.key.lod > b.key.lod; });
-    int root_level = g.top_lod + 1;
-    world_pack::directory dir;
-    for (auto& p : order) {
-        if (p.key.lod < 0 || p.key.lod > g.top_lod)
-            fail("world: a chunk of LOD ", p.key.lod, " in a world whose LODs are 0..", g.top_lod);
-        if (p.chunk && !p.chunk->empty()) {
-            if (p.chunk->chunk_bits != g.chunk_bits)
-                fail("world: a chunk of 2^", p.chunk->chunk_bits, " voxels a side in a world of 2^", g.chunk_bits, " chunks");
-            if (p.chunk->dag.size() <= VX_SV_HEADER_WORDS || p.chunk->dag[VX_SV_HEADER_ATTRIBUTE_KIND] != kind)
-                fail("world: chunk (LOD ", p.key.lod, ", ", p.key.cell.x, " ", p.key.cell.y, " ", p.key.cell.z,
-                     ") has other attributes than its world");
-        }
-        dir.insert(p, root_level);
-    }
-    for (auto& s : dir.nodes[0]) s = dir.collapse(s);
-
-    // Words: header, the nodes reachable from the root (in creation order), entries, DAGs.
-    std::vector<std::int64_t> node_at(dir.nodes.size(), -1);
-    std::uint64_t words = VX_WD_HEADER_WORDS;
-    std::vector<std::uint32_t> reach{0};
-    for (std::size_t i = 0; i < reach.size(); ++i) {
-        node_at[reach[i]] = std::int64_t(words);
-        words += VX_WD_NODE_WORDS;
-        for (auto& s : dir.nodes[reach[i]])
-            if (s.kind == world_pack::slot::node) reach.push_back(s.index);
-    }
-    std::uint64_t entries_at = words;
-    words += VX_WD_ENTRY_WORDS * dir.entries.size();
-    std::map<const chunk_record*, std::uint64_t> placed;  // each chunk's DAG once
-    for (auto& e : dir.entries)
-        if (placed.emplace(e.chunk, words).second) words += e.chunk->dag.size();
+    world_directory dir(g, cut, attributes);
+    std::map<const chunk_record*, std::uint64_t> placed;
+    std::uint64_t words = dir.words();
+    for (auto* c : dir.chunks()) placed[c] = words, words += c->dag.size();
     check_blob_size("world", words);
-
     blob_words w(words, 0u);
-    w[VX_WD_HEADER_MAGIC] = VX_WD_MAGIC;
-    w[VX_WD_HEADER_VERSION] = VX_WD_VERSION;
-    // The walk covers the shown chunks' solid boxes (a coarse voxel may reach past the
-    // finest data's bounds), and starts at their min corner, as the reference's does.
-    box3i bounds;
-    for (auto& e : dir.entries) {
-        const chunk_record& c = *e.chunk;
-        glm::ivec3 base = g.origin + ((e.key.cell << e.key.lod) << g.chunk_bits);
-        bounds.include(base + (c.solid_min << e.key.lod));
-        bounds.include(base + ((c.solid_max + 1) << e.key.lod) - 1);
-    }
-    glm::ivec3 extent = bounds.extent();
-    glm::ivec3 start = bounds.empty() ? g.origin : bounds.min;
-    for (int a = 0; a < 3; ++a) {
-        w[VX_WD_HEADER_ORIGIN + a] = std::uint32_t(start[a]);
-        w[VX_WD_HEADER_EXTENT + a] = std::uint32_t(extent[a]);
-        w[VX_WD_HEADER_SHIFT + a] = std::uint32_t(start[a] - g.origin[a]);
-    }
-    w[VX_WD_HEADER_CHUNK_BITS] = std::uint32_t(g.chunk_bits);
-    w[VX_WD_HEADER_ROOT_LEVEL] = std::uint32_t(root_level);
-    w[VX_WD_HEADER_ROOT] = VX_WD_HEADER_WORDS;
-    w[VX_WD_HEADER_ATTRIBUTE_KIND] = kind;
-    for (std::size_t n = 0; n < dir.nodes.size(); ++n) {
-        if (node_at[n] < 0) continue;
-        for (std::size_t o = 0; o < 8; ++o) {
-            const auto& s = dir.nodes[n][o];
-            std::uint64_t child = s.kind == world_pack::slot::node    ? std::uint64_t(node_at[s.index])
-                                  : s.kind == world_pack::slot::entry ? (entries_at + VX_WD_ENTRY_WORDS * s.index) | VX_WD_CHILD_IS_ENTRY
-                                                                      : 0u;
-            w[std::size_t(node_at[n]) + o] = std::uint32_t(child);
-        }
-    }
-    for (std::size_t i = 0; i < dir.entries.size(); ++i) {
-        const chunk_record& c = *dir.entries[i].chunk;
-        std::uint64_t e = entries_at + VX_WD_ENTRY_WORDS * i;
-        w[e + VX_WD_ENTRY_DAG] = std::uint32_t(placed[&c]);
-        w[e + VX_WD_ENTRY_LOD] = std::uint32_t(dir.entries[i].key.lod);
-        w[e + VX_WD_ENTRY_BOX_MIN] = pack_chunk_voxel(c.solid_min);
-        w[e + VX_WD_ENTRY_BOX_MAX] = pack_chunk_voxel(c.solid_max);
-    }
+    dir.write(w, [&](const chunk_record* c) { return placed.at(c); });
     for (auto& [chunk, at] : placed) std::copy(chunk->dag.begin(), chunk->dag.end(), w.begin() + std::ptrdiff_t(at));
     return w;
 }

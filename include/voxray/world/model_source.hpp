@@ -1,0 +1,95 @@
+// A voxel model as the source of a world build (world/world_build.hpp), optionally tiled:
+// the model repeated `repeat` times along each axis, copy (i, j, k) shifted by the model's
+// extent times (i, j, k) — a real scene made into a big world without holding the big
+// world in memory (the copies are looked up, never stored).
+#pragma once
+#include <cstdint>
+#include <set>
+#include <vector>
+
+#include "voxray/core/checksum.hpp"
+#include "voxray/core/error.hpp"
+#include "voxray/model/voxel_model.hpp"
+#include "voxray/world/chunk_voxels.hpp"
+#include "voxray/world/world_blob.hpp"
+
+namespace voxray {
+
+class model_source {
+public:
+    explicit model_source(const voxel_model& model, glm::ivec3 repeat = glm::ivec3(1)) : model_(&model), repeat_(repeat) {
+        if (glm::any(glm::lessThan(repeat, glm::ivec3(1))))
+            fail("model source: repeat ", repeat.x, " x ", repeat.y, " x ", repeat.z, " must be at least 1 on every axis");
+        box3i b = model.bounds();
+        tile_ = b.extent();
+        for (int a = 0; a < 3; ++a)
+            if (std::int64_t(b.min[a]) + std::int64_t(tile_[a]) * repeat[a] > voxel_model::coordinate_limit)
+                fail("model source: ", repeat[a], " copies of ", tile_[a], " voxels pass the coordinate limit ",
+                     voxel_model::coordinate_limit);
+    }
+
+    box3i bounds() const {
+        box3i b = model_->bounds();
+        if (b.empty()) return b;
+        return {b.min, b.min + tile_ * repeat_};
+    }
+    std::uint32_t hash() const {
+        fnv64 h;
+        model_->for_each_chunk([&](glm::ivec3 origin, const voxel_model::chunk& c) {
+            h.bytes(&origin, sizeof origin);
+            h.bytes(c.voxels.data(), c.voxels.size());
+        });
+        for (int i = 0; i < 256; ++i) h.bytes(&model_->palette()[std::uint8_t(i)].colour, sizeof(rgba));
+        h.bytes(&repeat_, sizeof repeat_);
+        return std::uint32_t(h.h ^ (h.h >> 32));
+    }
+    // Cells any copy's model chunks fall in.
+    std::vector<glm::ivec3> cells(const world_grid& g) const {
+        std::set<glm::ivec3, ivec3_less> out;
+        for_each_copy([&](glm::ivec3 shift) {
+            model_->for_each_chunk([&](glm::ivec3 origin, const voxel_model::chunk&) {
+                glm::ivec3 lo = cell_of(origin + shift, g.origin, g.chunk_bits);
+                glm::ivec3 hi = cell_of(origin + shift + voxel_model::chunk_edge - 1, g.origin, g.chunk_bits);
+                for (int z = lo.z; z <= hi.z; ++z)
+                    for (int y = lo.y; y <= hi.y; ++y)
+                        for (int x = lo.x; x <= hi.x; ++x) out.insert({x, y, z});
+            });
+        });
+        return {out.begin(), out.end()};
+    }
+    // The cell's voxels: those of every copy's model chunks that overlap the cell.
+    chunk_voxels voxels(const world_grid& g, glm::ivec3 cell, bool colours) const {
+        chunk_voxels out;
+        box3i cell_box{g.origin + (cell << g.chunk_bits), g.origin + ((cell + 1) << g.chunk_bits)};
+        for_each_copy([&](glm::ivec3 shift) {
+            model_->for_each_chunk([&](glm::ivec3 origin, const voxel_model::chunk& c) {
+                glm::ivec3 lo = origin + shift;
+                if (glm::any(glm::greaterThanEqual(lo, cell_box.max)) ||
+                    glm::any(glm::lessThanEqual(lo + voxel_model::chunk_edge, cell_box.min)))
+                    return;
+                for (int i = 0; i < voxel_model::chunk_voxels; ++i) {
+                    std::uint8_t v = c.voxels[std::size_t(i)];
+                    glm::ivec3 p = lo + voxel_model::local_position(i);
+                    if (!v || !cell_box.contains(p)) continue;
+                    out.keys.push_back(chunk_voxels::key(p - cell_box.min));
+                    out.values.push_back(colours ? pack_rgba(model_->palette()[v].colour) : v);
+                }
+            });
+        });
+        out.sort();
+        return out;
+    }
+
+private:
+    template <class F>
+    void for_each_copy(F&& f) const {
+        for (int k = 0; k < repeat_.z; ++k)
+            for (int j = 0; j < repeat_.y; ++j)
+                for (int i = 0; i < repeat_.x; ++i) f(tile_ * glm::ivec3(i, j, k));
+    }
+
+    const voxel_model* model_;
+    glm::ivec3 repeat_, tile_{0};
+};
+
+}  // namespace voxray
