@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # The main job: install what is missing, build, render the built-in scene on every
 # backend to PNG, run the benchmark matrix (every structure and baseline: Embree, NanoVDB)
-# into a results file and print its table, and the editing figures of brickmap and NAADF.
+# into a results file and print its table, the editing figures of brickmap and NAADF, and
+# an open world built chunk by chunk and streamed along a camera path.
 set -euo pipefail
 source "$(dirname "${BASH_SOURCE[0]}")/setup.sh"
 install_packages
@@ -34,5 +35,8 @@ for structure in brickmap naadf; do
     "$VOXRAY" bench "$SCENE" --structure "$structure" --backend vulkan --edits spheres --threads 2 2>/dev/null | tail -n1
     "$VOXRAY" bench "$SCENE" --structure "$structure" --backend vulkan --edits voxel 2>/dev/null | tail -n1
 done
+echo "== open world: $SCENE tiled 4 x 4 x 1, built chunk by chunk (64^3 chunks), then streamed along a camera path (vulkan)"
+"$VOXRAY" world-build "$SCENE" --tile 4 4 1 --chunk-bits 6 --colours --out "$OUT/world" | tail -n1
+"$VOXRAY" world-fly "$OUT/world" --backend vulkan --frames 8 --factor 2.0 --png-dir "$OUT/world_frames"
 echo "== images, results.jsonl, plots (mrays.png, speed_vs_memory.png, steps.png) and table.md in $OUT"
 exit ${status}

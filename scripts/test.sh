@@ -4,7 +4,7 @@
 # passes, each a build without OpenCL, Vulkan and Embree (which also proves such a build
 # works) that configures and runs only the test folders its ctest labels select:
 #   ASan + UBSan  every CPU label (cpu, io, mesh, malformed, brickmap, naadf, svdag, world, sync, conformance, nanovdb);
-#   TSan          brickmap, naadf and sync: the threaded editing and the incremental updates;
+#   TSan          brickmap, naadf, svdag, world and sync: the threaded editing, builds and streaming, and the incremental updates;
 #   clang++-14    every CPU label, built with clang instead of g++.
 # and one more ASan + UBSan pass with OpenCL and Vulkan: every test labelled opencl or
 # vulkan (the backend tests, both GPU conformance groups, sync, brickmap tracing).
@@ -43,7 +43,7 @@ ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 \
     cpu_pass "AddressSanitizer + UBSan" "${ASAN_DIR:-$BUILD_DIR-asan}" "$CPU_LABELS" "${SANITIZED[@]}" \
     -DVOXRAY_SANITIZE=address
 TSAN_OPTIONS="halt_on_error=1 second_deadlock_stack=1" \
-    cpu_pass "ThreadSanitizer" "${TSAN_DIR:-$BUILD_DIR-tsan}" '^(brickmap|naadf|svdag|sync)$' "${SANITIZED[@]}" \
+    cpu_pass "ThreadSanitizer" "${TSAN_DIR:-$BUILD_DIR-tsan}" '^(brickmap|naadf|svdag|world|sync)$' "${SANITIZED[@]}" \
     -DVOXRAY_SANITIZE=thread
 cpu_pass "clang++-14" "${CLANG_DIR:-$BUILD_DIR-clang}" "$CPU_LABELS" -DCMAKE_BUILD_TYPE=Release \
     -DCMAKE_CXX_COMPILER=clang++-14
@@ -55,7 +55,7 @@ gpu_asan_pass() {
     local dir=${ASAN_GPU_DIR:-$BUILD_DIR-asan-gpu} labels='^(opencl|vulkan)$' start=$SECONDS
     echo "== AddressSanitizer + UBSan with OpenCL and Vulkan: tests labelled $labels ($dir)"
     cmake -S "$ROOT" -B "$dir" -DVOXRAY_REQUIRE_ALL_BACKENDS=ON -DVOXRAY_BUILD_TOOLS=OFF \
-        '-DVOXRAY_TEST_LABELS=^(opencl|vulkan|conformance|sync|brickmap|svdag)$' "${SANITIZED[@]}" \
+        '-DVOXRAY_TEST_LABELS=^(opencl|vulkan|conformance|sync|brickmap|svdag|world)$' "${SANITIZED[@]}" \
         -DVOXRAY_SANITIZE=address >/dev/null
     local targets
     targets=$(cd "$dir" && ctest -N -L "$labels" | sed -n 's/^ *Test *#[0-9]*: //p')

@@ -31,6 +31,8 @@ command add_info(CLI::App& parent);
 command add_render(CLI::App& parent);
 command add_check(CLI::App& parent);
 command add_bench(CLI::App& parent);
+command add_world_build(CLI::App& parent);
+command add_world_fly(CLI::App& parent);
 
 inline const std::vector<std::string> ray_set_names = {"primary", "secondary", "shadow"};
 

@@ -1,4 +1,5 @@
-// voxray: info, render, check and bench on any scene, structure and backend.
+// voxray: info, render, check and bench on any scene, structure and backend; world-build
+// and world-fly for open worlds on disk.
 #include <cstdio>
 #include <exception>
 #include <string>
@@ -13,7 +14,8 @@ int main(int argc, char** argv) {
                  "(builtin:terrain, builtin:menger)"};
     app.require_subcommand(1);
     app.set_help_all_flag("--help-all", "help for every command");
-    std::vector<command> commands = {add_info(app), add_render(app), add_check(app), add_bench(app)};
+    std::vector<command> commands = {add_info(app),  add_render(app),      add_check(app),
+                                     add_bench(app), add_world_build(app), add_world_fly(app)};
     try {
         app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {

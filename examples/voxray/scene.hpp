@@ -25,12 +25,13 @@ struct scene_options {
     std::uint64_t max_model_mib = io::vox_options{}.max_model_bytes >> 20;
     std::uint64_t max_cell_tests = io::voxelize_options{}.max_cell_tests;
 
-    void add_to(CLI::App* app, bool many) {
+    // max_resolution: 4096 for a model voxelized whole; world-build voxelizes chunk by chunk.
+    void add_to(CLI::App* app, bool many, int max_resolution = io::max_voxelize_resolution) {
         auto* opt = app->add_option("scene", scenes, many ? "one or more scenes (a file or builtin:NAME)" : "a .vox/.obj/.ply file or builtin:NAME")
                         ->required();
         if (!many) opt->expected(1);
         app->add_option("--resolution", resolution, "voxels along a mesh's longest side")
-            ->check(CLI::Range(1, 4096))
+            ->check(CLI::Range(1, max_resolution))
             ->capture_default_str();
         app->add_option("--max-voxels", max_voxels, "most voxels a .vox scene may place (instances counted)")
             ->check(CLI::Range(std::uint64_t(1), std::uint64_t(1) << 40))

@@ -7,7 +7,7 @@ tool="$1"; data="${VOXRAY_DATA_DIR:-$2}"
 if [ ! -d "$data/vox" ]; then echo "no data folder at $data: skipped"; exit 0; fi
 status=0
 for scene in "$data"/vox/*.vox "$data/mesh/stanford_bunny.ply"; do
-    line=$("$tool" check "$scene" --resolution 256 --rays 100000 --structures dense,brickmap,naadf,svdag,svdag-colours,embree-boxes,nanovdb-hdda \
+    line=$("$tool" check "$scene" --resolution 256 --rays 100000 --structures dense,brickmap,naadf,svdag,svdag-colours,world,world-16,embree-boxes,nanovdb-hdda \
         --backends cpu,cpu-scalar,opencl,vulkan 2>/dev/null | tail -n1) || status=1
     echo "$(basename "$scene"): $line"
 done

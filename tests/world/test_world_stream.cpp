@@ -19,6 +19,9 @@
 #include "voxray/cpu.hpp"
 #include "voxray/scenes/builtin.hpp"
 #include "voxray/tracer.hpp"
+#include "test_data.hpp"
+#include "voxray/io/mesh_loader.hpp"
+#include "voxray/world/mesh_source.hpp"
 #include "voxray/world/model_source.hpp"
 #include "voxray/world/streamed_world.hpp"
 #include "voxray/world/world_build.hpp"
@@ -112,7 +115,13 @@ TEST(world_build, resumes_an_interrupted_build_and_rebuilds_what_is_missing_or_c
     fs::remove(chunk_file_path(dir.path, first.chunks[3].key));
     fs::resize_file(chunk_file_path(dir.path, first.chunks[10].key), 50);
     EXPECT_THROW(read_manifest(dir.path), error);
-    auto again = build_world(model_source(model), dir.path, small_chunks());
+    // The same voxels in a model filled in another order: the same source.
+    voxel_model same;
+    std::vector<std::pair<glm::ivec3, std::uint8_t>> voxels;
+    model.for_each_voxel([&](glm::ivec3 p, std::uint8_t v) { voxels.emplace_back(p, v); });
+    for (auto it = voxels.rbegin(); it != voxels.rend(); ++it) same.set(it->first, it->second);
+    same.palette() = model.palette();
+    auto again = build_world(model_source(same), dir.path, small_chunks());
     std::uint64_t resumed = 0, total = 0;
     for (auto& l : again.lods) resumed += l.resumed, total += l.chunks;
     EXPECT_EQ(total, first.chunks.size());
@@ -133,6 +142,38 @@ TEST(world_build, a_tiled_model_is_its_copies) {
     world_manifest m = read_manifest(dir.path);
     EXPECT_EQ(m.bounds.extent(), model.bounds().extent() * glm::ivec3(3, 1, 2));
     EXPECT_THROW(model_source(model, {0, 1, 1}), error);
+}
+
+// Out of core from a mesh, chunk by chunk: the same chunks as the in-memory world of the
+// whole-model voxelization (so the same voxels and colours, at every LOD).
+TEST(world_build, a_mesh_builds_chunk_by_chunk_what_the_voxelizer_makes) {
+    VOXRAY_REQUIRE_DATA();
+    for (const char* name : {"stanford_bunny.ply", "dabrovic_sponza.obj"}) {
+        SCOPED_TRACE(name);
+        io::triangle_mesh mesh = io::load_mesh(*data_dir() / "mesh" / name);
+        io::voxelize_options vo;
+        vo.resolution = 160;
+        voxel_model whole = io::voxelize(mesh, vo);
+        world_options mo;
+        mo.chunk_bits = 5;
+        chunked_world memory(whole, mo);
+        temp_dir dir;
+        world_build_options o = small_chunks();
+        o.chunk_bits = 5;
+        auto report = build_world(mesh_source(mesh, 160), dir.path, o);
+        EXPECT_EQ(report.lods[0].voxels, whole.voxel_count());
+        world_manifest m = read_manifest(dir.path);
+        std::size_t total = 0;
+        for (auto x : memory.stats().chunks) total += x;
+        ASSERT_EQ(m.chunks.size(), total);
+        for (auto& c : m.chunks) {
+            const chunk_record* mem = memory.find(c.key);
+            ASSERT_NE(mem, nullptr);
+            EXPECT_EQ(read_chunk_file(chunk_file_path(dir.path, c.key), 5).dag, mem->dag) << "LOD " << c.key.lod;
+        }
+    }
+    io::triangle_mesh empty;
+    EXPECT_THROW(mesh_source(empty, 64), error);
 }
 
 TEST(world_lod_select, equation_1_splits_near_regions_and_keeps_far_ones_coarse) {

@@ -57,9 +57,11 @@ struct voxel_grid_map {
     glm::dvec3 to_voxel(glm::dvec3 world) const { return (world - origin) * scale; }
 };
 
-inline voxel_grid_map make_grid_map(const mesh_bounds& b, int resolution) {
-    if (resolution < 1 || resolution > max_voxelize_resolution)
-        fail("voxelization resolution ", resolution, " is outside the supported range 1..", max_voxelize_resolution);
+// `max_resolution`: a whole model in memory stops at 4096; a world built chunk by chunk
+// (world/mesh_source.hpp) goes further.
+inline voxel_grid_map make_grid_map(const mesh_bounds& b, int resolution, int max_resolution = max_voxelize_resolution) {
+    if (resolution < 1 || resolution > max_resolution)
+        fail("voxelization resolution ", resolution, " is outside the supported range 1..", max_resolution);
     auto ext = b.extent();
     int longest = ext.x >= ext.y && ext.x >= ext.z ? 0 : (ext.y >= ext.z ? 1 : 2);
     double scale = double(resolution) / ext[longest];

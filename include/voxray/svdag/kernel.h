@@ -30,7 +30,8 @@ VX_FN vx_svdag vx_svdag_load(VX_BLOB blob) {
 /* Every lane starts at the root of the DAG at word 0 (its cube holds the whole world). */
 VX_FN vx_sv_state vx_svdag_begin(vx_svdag g, vx_ray r) {
     vx_sv_state s = vx_sv_begin(g.f, r, g.ox, g.oy, g.oz);
-    return vx_sv_enter(s, vx_u32_splat(0u), vx_u32_splat(0u), s.w.status == s.w.status);
+    vx_mask every_lane = vx_u32_splat(0u) == 0u;
+    return vx_sv_enter(s, vx_u32_splat(0u), vx_u32_splat(0u), every_lane);
 }
 
 VX_FN vx_sv_state vx_svdag_step(VX_BLOB blob, vx_svdag g, vx_sv_state s) {

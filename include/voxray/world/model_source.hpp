@@ -4,7 +4,9 @@
 // world in memory (the copies are looked up, never stored).
 #pragma once
 #include <cstdint>
+#include <algorithm>
 #include <set>
+#include <utility>
 #include <vector>
 
 #include "voxray/core/checksum.hpp"
@@ -33,12 +35,17 @@ public:
         if (b.empty()) return b;
         return {b.min, b.min + tile_ * repeat_};
     }
+    // Of the voxels, the palette and the tiling; in chunk order, whatever order the
+    // model's map iterates in.
     std::uint32_t hash() const {
+        std::vector<std::pair<glm::ivec3, const voxel_model::chunk*>> chunks;
+        model_->for_each_chunk([&](glm::ivec3 origin, const voxel_model::chunk& c) { chunks.emplace_back(origin, &c); });
+        std::sort(chunks.begin(), chunks.end(), [](auto& a, auto& b) { return ivec3_less{}(a.first, b.first); });
         fnv64 h;
-        model_->for_each_chunk([&](glm::ivec3 origin, const voxel_model::chunk& c) {
+        for (auto& [origin, c] : chunks) {
             h.bytes(&origin, sizeof origin);
-            h.bytes(c.voxels.data(), c.voxels.size());
-        });
+            h.bytes(c->voxels.data(), c->voxels.size());
+        }
         for (int i = 0; i < 256; ++i) h.bytes(&model_->palette()[std::uint8_t(i)].colour, sizeof(rgba));
         h.bytes(&repeat_, sizeof repeat_);
         return std::uint32_t(h.h ^ (h.h >> 32));

@@ -1,0 +1,250 @@
+// voxray world-build / world-fly: an open world on disk, chunk by chunk, and a camera
+// path through it with streaming. world-build writes the chunk files and the manifest
+// (world/world_build.hpp) plus voxray-world.json (the scene's up axis and palette, for
+// shading); world-fly streams the world along a camera path (world/streamed_world.hpp),
+// traces each frame on a backend, and reports per frame what was resident and what it cost.
+#include <sys/resource.h>
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+
+#include <nlohmann/json.hpp>
+
+#include "cli.hpp"
+#include "engines.hpp"
+#include "png_writer.hpp"
+#include "scene.hpp"
+#include "voxray/io/mesh_loader.hpp"
+#include "voxray/rays.hpp"
+#include "voxray/world/mesh_source.hpp"
+#include "voxray/world/model_source.hpp"
+#include "voxray/world/streamed_world.hpp"
+#include "voxray/world/world_build.hpp"
+
+namespace voxray::tool {
+
+namespace {
+
+using json = nlohmann::json;
+
+double peak_rss_mib() {
+    rusage u{};
+    getrusage(RUSAGE_SELF, &u);
+    return double(u.ru_maxrss) / 1024.0;  // KiB on Linux
+}
+
+struct build_options {
+    scene_options scene;
+    std::string out, json_out;
+    int chunk_bits = 8, density = 2;
+    bool colours = false;
+    float colour_error = 0.05f;
+    std::vector<int> tile{1, 1, 1};
+    unsigned threads = 0;
+};
+
+int world_build(const build_options& o) {
+    const std::string& spec = o.scene.scenes[0];
+    world_build_options wo;
+    wo.chunk_bits = o.chunk_bits;
+    wo.density = o.density;
+    wo.threads = o.threads;
+    wo.attributes = o.colours ? svdag_attributes::colour_blocks : svdag_attributes::exact;
+    wo.colour_error = o.colour_error;
+    std::string ext = std::filesystem::path(spec).extension().string();
+    bool mesh = ext == ".obj" || ext == ".ply";
+    world_build_report report;
+    palette pal;
+    int up_axis = 2;
+    auto start = std::chrono::steady_clock::now();
+    if (mesh) {
+        io::triangle_mesh m = io::load_mesh(spec);
+        std::fprintf(stderr, "building a world from %s at %d, chunk by chunk ...\n", spec.c_str(), o.scene.resolution);
+        mesh_source source(m, o.scene.resolution, o.scene.max_cell_tests);
+        pal = source.colours();
+        up_axis = 1;
+        report = build_world(source, o.out, wo);
+    } else {
+        voxel_model model = load_scene(spec, o.scene);
+        pal = model.palette();
+        up_axis = model.up_axis;
+        std::fprintf(stderr, "building a world from %s tiled %d x %d x %d ...\n", spec.c_str(), o.tile[0], o.tile[1], o.tile[2]);
+        report = build_world(model_source(model, {o.tile[0], o.tile[1], o.tile[2]}), o.out, wo);
+    }
+    double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    world_manifest m = read_manifest(o.out);
+    json colours = json::array();
+    for (int i = 0; i < 256; ++i) colours.push_back(pack_rgba(pal[std::uint8_t(i)].colour));
+    std::ofstream(std::filesystem::path(o.out) / "voxray-world.json") << json{{"scene", scene_label(spec)}, {"up_axis", up_axis},
+                                                                              {"palette", colours}}.dump() << "\n";
+
+    glm::ivec3 e = m.bounds.extent();
+    std::printf("world %s: %d x %d x %d voxels, chunks of %d^3, LODs 0..%d, %s attributes\n", o.out.c_str(), e.x, e.y, e.z,
+                1 << m.grid.chunk_bits, m.grid.top_lod, o.colours ? "colour-block" : "exact");
+    std::printf("%4s %10s %14s %12s %9s %8s\n", "LOD", "chunks", "voxels", "disk MiB", "seconds", "resumed");
+    json lods = json::array();
+    for (std::size_t n = 0; n < report.lods.size(); ++n) {
+        auto& l = report.lods[n];
+        std::printf("%4zu %10llu %14llu %12.2f %9.2f %8llu\n", n, (unsigned long long)l.chunks, (unsigned long long)l.voxels,
+                    double(l.disk_bytes) / 1048576.0, l.seconds, (unsigned long long)l.resumed);
+        lods.push_back({{"lod", n}, {"chunks", l.chunks}, {"voxels", l.voxels}, {"disk_bytes", l.disk_bytes}, {"seconds", l.seconds}, {"resumed", l.resumed}});
+    }
+    double rss = peak_rss_mib();
+    std::printf("%.1f s in all (%.1f s building), %.1f M voxels/s, %.1f chunks/s, peak memory %.0f MiB, %.1f MiB on disk\n",
+                seconds, report.seconds, report.voxels_per_second() / 1e6, report.chunks_per_second(), rss,
+                double(m.disk_bytes()) / 1048576.0);
+    if (!o.json_out.empty()) {
+        std::ofstream out(o.json_out, std::ios::app);
+        out << json{{"scene", scene_label(spec)}, {"resolution", mesh ? o.scene.resolution : 0}, {"tile", o.tile},
+                    {"extent", {e.x, e.y, e.z}}, {"chunk_bits", m.grid.chunk_bits}, {"top_lod", m.grid.top_lod},
+                    {"colours", o.colours}, {"seconds", seconds}, {"build_seconds", report.seconds},
+                    {"voxels_per_second", report.voxels_per_second()}, {"chunks_per_second", report.chunks_per_second()},
+                    {"peak_rss_mib", rss}, {"disk_bytes", m.disk_bytes()}, {"lods", lods}}
+                   .dump()
+            << "\n";
+    }
+    return 0;
+}
+
+struct fly_options {
+    std::string dir, backend = "cpu", png_dir, json_out;
+    int frames = 24, width = 640, height = 360;
+    double factor = 2.0, budget_mib = 1024;
+    bool lod0 = false;
+};
+
+// The camera path: along the world's longest horizontal axis, a third of the way up,
+// from one end to the other, looking ahead and sweeping a little left and right.
+camera path_camera(const box3i& b, int up_axis, int frame, int frames) {
+    int a = (up_axis + 1) % 3, c = (up_axis + 2) % 3;
+    glm::vec3 lo(b.min), hi(b.max), size = hi - lo;
+    if (size[c] > size[a]) std::swap(a, c);
+    float s = frames > 1 ? float(frame) / float(frames - 1) : 0.5f;
+    glm::vec3 eye = lo + size * 0.5f;
+    eye[a] = lo[a] + size[a] * (0.08f + 0.84f * s);
+    eye[up_axis] = lo[up_axis] + size[up_axis] * 0.33f;
+    glm::vec3 ahead(0.0f), side(0.0f), up(0.0f);
+    ahead[a] = 1.0f, side[c] = 1.0f, up[up_axis] = 1.0f;
+    float yaw = 0.5f * std::sin(6.2831853f * s);
+    glm::vec3 target = eye + (std::cos(yaw) * ahead + std::sin(yaw) * side) * size[a] * 0.25f - up * size[up_axis] * 0.05f;
+    return look_at(eye, target, 60.0f, up);
+}
+
+template <class Backend>
+int fly(const fly_options& o) {
+    residency_options ro;
+    ro.streaming_factor = o.lod0 ? 1e9 : o.factor;
+    ro.budget_bytes = o.lod0 ? std::uint64_t(-1) / 2 : std::uint64_t(o.budget_mib * 1048576.0);
+    streamed_world world(o.dir, ro);  // fails first, naming the manifest, on a folder without a world
+    // Shading hints from world-build (a world built through the library has none: Z up, grey).
+    json meta = json::object();
+    auto meta_path = std::filesystem::path(o.dir) / "voxray-world.json";
+    if (std::filesystem::exists(meta_path)) meta = json::parse(std::ifstream(meta_path));
+    int up_axis = meta.value("up_axis", 2);
+    if (up_axis < 0 || up_axis > 2) fail(meta_path.string(), ": up_axis ", up_axis, " is not 0, 1 or 2");
+    const world_manifest& m = world.manifest();
+    bool colours = m.attributes == svdag_attributes::colour_blocks;
+    palette pal;
+    json colours_of = meta.value("palette", json::array());
+    for (int i = 0; i < 256 && i < int(colours_of.size()); ++i) {
+        std::uint32_t c = colours_of[std::size_t(i)];
+        pal[std::uint8_t(i)].colour = rgba{std::uint8_t(c), std::uint8_t(c >> 8), std::uint8_t(c >> 16), 255};
+    }
+    tracer<Backend, streamed_world> t(world);
+    if (!o.png_dir.empty()) std::filesystem::create_directories(o.png_dir);
+    std::ofstream out;
+    if (!o.json_out.empty()) out.open(o.json_out, std::ios::app);
+    double disk = double(m.disk_bytes());
+    std::printf("%5s %9s %9s %9s %10s %8s %12s %10s %8s\n", "frame", "update ms", "upload ms", "trace ms", "sent KiB",
+                "chunks", "resident MiB", "device MiB", "of disk");
+    double peak_share = 0;
+    for (int f = 0; f < o.frames; ++f) {
+        camera cam = path_camera(m.bounds, up_axis, f, o.frames);
+        auto t0 = std::chrono::steady_clock::now();
+        world.update(glm::dvec3(cam.position), true);
+        auto t1 = std::chrono::steady_clock::now();
+        t.update(world);
+        auto t2 = std::chrono::steady_clock::now();
+        auto rays = primary_rays(cam, o.width, o.height);
+        std::vector<hit> hits(rays.size()), shadow(rays.size());
+        t.closest_hit(rays, hits);
+        glm::vec3 sun = sun_direction(up_axis);
+        auto shadow_set = shadow_rays(rays, hits, sun);
+        t.any_hit(shadow_set, shadow);
+        auto t3 = std::chrono::steady_clock::now();
+        auto ms = [](auto a, auto b) { return std::chrono::duration<double, std::milli>(b - a).count(); };
+        auto s = world.residency().stats();
+        double share = double(s.resident_bytes) / disk;
+        peak_share = std::max(peak_share, share);
+        std::printf("%5d %9.1f %9.1f %9.1f %10.1f %8llu %12.2f %10.2f %7.1f%%\n", f, ms(t0, t1), ms(t1, t2), ms(t2, t3),
+                    double(t.bytes_uploaded_last_update()) / 1024.0, (unsigned long long)s.resident_chunks,
+                    double(s.resident_bytes) / 1048576.0, double(world.bytes()) / 1048576.0, 100.0 * share);
+        if (!o.png_dir.empty()) {
+            std::vector<std::uint8_t> rgb(rays.size() * 3);
+            for (std::size_t i = 0; i < rays.size(); ++i) {
+                glm::vec3 a = colours ? albedo_rgba8(hits[i]) : albedo(pal, hits[i]);
+                glm::vec3 c = hits[i].is_hit() ? shade(a, hits[i], sun, shadow[i].is_hit()) : sky(rays[i].direction, up_axis);
+                auto px = to_srgb8(c);
+                std::copy(px.begin(), px.end(), rgb.begin() + std::ptrdiff_t(i * 3));
+            }
+            char name[32];
+            std::snprintf(name, sizeof name, "frame_%03d.png", f);
+            write_png((std::filesystem::path(o.png_dir) / name).string(), o.width, o.height, rgb);
+        }
+        if (out)
+            out << json{{"world", o.dir}, {"backend", Backend::name}, {"factor", o.lod0 ? 0.0 : o.factor}, {"lod0", o.lod0},
+                        {"frame", f}, {"update_ms", ms(t0, t1)}, {"upload_ms", ms(t1, t2)}, {"trace_ms", ms(t2, t3)},
+                        {"sent_bytes", t.bytes_uploaded_last_update()}, {"resident_chunks", s.resident_chunks},
+                        {"resident_bytes", s.resident_bytes}, {"device_bytes", world.bytes()}, {"disk_bytes", m.disk_bytes()},
+                        {"failures", s.failures}}
+                       .dump()
+                << "\n";
+    }
+    for (auto& e : world.residency().errors()) std::fprintf(stderr, "not shown: %s\n", e.c_str());
+    std::printf("peak resident share of the world on disk (%.1f MiB): %.2f%%\n", disk / 1048576.0, 100.0 * peak_share);
+    return world.residency().stats().failures ? 1 : 0;
+}
+
+}  // namespace
+
+command add_world_build(CLI::App& parent) {
+    auto* app = parent.add_subcommand("world-build", "build an open world on disk chunk by chunk (chunked DAGs with LODs)");
+    auto o = std::make_shared<build_options>();
+    o->scene.add_to(app, false, max_world_mesh_resolution);
+    app->add_option("--out", o->out, "the world's folder")->required();
+    app->add_option("--chunk-bits", o->chunk_bits, "chunks of 2^N voxels a side")->check(CLI::Range(4, 10))->capture_default_str();
+    app->add_option("--density", o->density, "children (of 8) a coarse voxel needs")->check(CLI::Range(1, 8))->capture_default_str();
+    app->add_flag("--colours", o->colours, "colour-block attributes (LODs average colours) instead of exact palette indices");
+    app->add_option("--colour-error", o->colour_error, "largest colour error in a block")->check(CLI::Range(0.0, 1.0))->capture_default_str();
+    app->add_option("--tile", o->tile, "a .vox or built-in scene repeated X Y Z times")->expected(3)->check(CLI::Range(1, 4096));
+    app->add_option("--threads", o->threads, "build threads (0: all)")->capture_default_str();
+    app->add_option("--json", o->json_out, "append the build report as a JSON line");
+    return {app, [o] { return world_build(*o); }};
+}
+
+command add_world_fly(CLI::App& parent) {
+    auto* app = parent.add_subcommand("world-fly", "stream a world along a camera path, trace each frame, report residency and cost");
+    auto o = std::make_shared<fly_options>();
+    app->add_option("dir", o->dir, "a world folder (voxray world-build)")->required()->check(CLI::ExistingDirectory);
+    app->add_option("--backend", o->backend, "backend to trace on")->check(CLI::IsMember(backend_names()))->capture_default_str();
+    app->add_option("--frames", o->frames, "frames along the path")->check(CLI::Range(1, 100000))->capture_default_str();
+    app->add_option("--width", o->width)->check(CLI::Range(8, 8192))->capture_default_str();
+    app->add_option("--height", o->height)->check(CLI::Range(8, 8192))->capture_default_str();
+    app->add_option("--factor", o->factor, "StreamingFactor of LOD selection (Aokana Eq. 1)")->check(CLI::Range(0.01, 1000.0))->capture_default_str();
+    app->add_option("--budget-mib", o->budget_mib, "most chunk bytes resident")->check(CLI::Range(1.0, 1e7))->capture_default_str();
+    app->add_flag("--lod0", o->lod0, "every chunk at LOD 0, no budget: the reference frames");
+    app->add_option("--png-dir", o->png_dir, "write frame_NNN.png here");
+    app->add_option("--json", o->json_out, "append one JSON line a frame");
+    return {app, [o] {
+                int rc = 2;
+                bool found = false;
+                for_each_type(backends{}, [&]<class B>() {
+                    if (!found && o->backend == B::name) found = true, rc = fly<B>(*o);
+                });
+                return rc;
+            }};
+}
+
+}  // namespace voxray::tool

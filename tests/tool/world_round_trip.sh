@@ -1,0 +1,22 @@
+#!/usr/bin/env bash
+# voxray world-build then world-fly end to end: a tiled built-in scene built chunk by chunk,
+# built again (every chunk resumed), flown on every backend (exit 0 only when no chunk
+# failed to load), and a clear error for a folder that holds no world.
+set -euo pipefail
+tool="$1"; work="$2"
+rm -rf "$work"
+"$tool" world-build builtin:terrain:96 --tile 2 2 1 --chunk-bits 5 --colours --out "$work/world" | tee "$work.build.txt"
+grep -q "LODs 0\.\." "$work.build.txt"
+"$tool" world-build builtin:terrain:96 --tile 2 2 1 --chunk-bits 5 --colours --out "$work/world" > "$work.again.txt"
+# Every chunk of the second build was kept from the first (the resumed column equals the chunks column).
+awk '$1 ~ /^[0-9]+$/ && NF == 6 && $2 != $6 { bad = 1 } END { exit bad }' "$work.again.txt"
+for backend in cpu cpu-scalar opencl vulkan; do
+    "$tool" world-fly "$work/world" --backend "$backend" --frames 3 --width 64 --height 36 --factor 2.0 \
+        --png-dir "$work/frames_$backend" | tee "$work.fly.txt"
+    grep -q "peak resident share" "$work.fly.txt"
+    [ -f "$work/frames_$backend/frame_002.png" ]
+done
+mkdir -p "$work/empty"
+if "$tool" world-fly "$work/empty" 2> "$work.err.txt"; then echo "no error for a folder without a world"; exit 1; fi
+grep -q "world.vxwm" "$work.err.txt"
+echo "world round trip: ok"
