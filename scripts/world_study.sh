@@ -21,7 +21,7 @@ BUILD_DIR="${BUILD_DIR:-$ROOT/build}"
 VOXRAY="$BUILD_DIR/voxray"
 FRAMES="${FRAMES:-24}"
 SIZE=(--width "${WIDTH:-480}" --height "${HEIGHT:-270}")
-python3 -c "import skimage" 2>/dev/null || {
+/usr/bin/python3 -c "import skimage" 2>/dev/null || {
     echo "== installing python3-skimage (SSIM)"
     sudo=""; [ "$(id -u)" -ne 0 ] && sudo="sudo"
     $sudo apt-get install -y -qq --no-install-recommends python3-skimage >/dev/null
@@ -30,7 +30,7 @@ name="$(basename "${MESH%.*}")_$RES"
 world="$WORK/$name"
 mkdir -p "$WORK" "$ROOT/docs/bench"
 echo "== world-build $MESH at $RES -> $world"
-"$VOXRAY" world-build "$MESH" --resolution "$RES" --colours --out "$world" --json "$ROOT/docs/bench/world_build.jsonl"
+"$VOXRAY" world-build "$MESH" --resolution "$RES" --max-cell-tests 68719476736 --colours --out "$world" --json "$ROOT/docs/bench/world_build.jsonl"
 fly="$ROOT/docs/bench/world_fly_$name.jsonl"
 rm -f "$fly"
 rm -rf "$WORK/frames_$name"
@@ -42,4 +42,4 @@ for factor in 1.2 1.6 2.0 2.4; do
     "$VOXRAY" world-fly "$world" --factor "$factor" --frames "$FRAMES" "${SIZE[@]}" --backend "$BACKEND" \
         --png-dir "$WORK/frames_$name/factor_$factor" --json "$fly"
 done
-python3 "$ROOT/scripts/world_table.py" "$fly" --frames "$WORK/frames_$name" --out "$ROOT/docs/bench/world_table_$name.md"
+/usr/bin/python3 "$ROOT/scripts/world_table.py" "$fly" --frames "$WORK/frames_$name" --out "$ROOT/docs/bench/world_table_$name.md"

@@ -45,7 +45,7 @@ def main():
     with open(a.fly) as f:
         for line in f:
             row = json.loads(line)
-            runs["lod0" if row["lod0"] else f"{row['factor']:g}"].append(row)
+            runs["lod0" if row["lod0"] else f"{row['factor']:.1f}"].append(row)
     if "lod0" not in runs:
         sys.exit("no --lod0 run in " + a.fly)
     lines = ["| StreamingFactor | resident, peak | resident, mean | resident chunks, peak | trace ms, median | SSIM vs LOD 0, mean (min) |",

@@ -72,6 +72,10 @@ private:
     // directory. True when anything changed.
     bool repack() {
         auto cut = residency_.placements();
+        std::vector<chunk_key> keys;
+        for (auto& p : cut) keys.push_back(p.key);
+        if (!words_.empty() && keys == shown_keys_) return false;  // the same chunks: nothing to write
+        shown_keys_ = std::move(keys);
         world_directory dir(residency_.manifest().grid, cut, residency_.manifest().attributes);
         auto shown = dir.chunks();
         std::map<chunk_key, const chunk_record*, key_order> wanted;
@@ -173,6 +177,7 @@ private:
     std::map<chunk_key, slot, key_order> slots_;
     std::map<std::uint64_t, std::uint64_t> free_;  // offset -> words
     std::vector<word_range> dirty_;
+    std::vector<chunk_key> shown_keys_;  // the cut the blob holds
 };
 
 }  // namespace voxray

@@ -5,6 +5,7 @@
 #include <bit>
 #include <cstdint>
 #include <map>
+#include <set>
 #include <span>
 #include <vector>
 
@@ -151,8 +152,9 @@ public:
     // The chunks the directory refers to, once each, in entry order.
     std::vector<const chunk_record*> chunks() const {
         std::vector<const chunk_record*> out;
+        std::set<const chunk_record*> seen;
         for (auto& e : dir_.entries)
-            if (std::find(out.begin(), out.end(), e.chunk) == out.end()) out.push_back(e.chunk);
+            if (seen.insert(e.chunk).second) out.push_back(e.chunk);
         return out;
     }
 
