@@ -84,10 +84,10 @@ public:
         {
             std::lock_guard lock(mutex_);
             queue_.clear();
-            for (auto& k : to_load) {
-                bool arrived = std::any_of(loaded_.begin(), loaded_.end(), [&](const chunk_record& c) { return c.key == k; });
-                if (!failed_.count(k) && !arrived) queue_.push_back(k);
-            }
+            std::set<chunk_key, key_order> arrived;  // loaded, not yet committed
+            for (auto& c : loaded_) arrived.insert(c.key);
+            for (auto& k : to_load)
+                if (!failed_.count(k) && !arrived.count(k)) queue_.push_back(k);
             stats_.skipped_for_budget = skipped;
             stats_.wanted_chunks = wanted_.size();
         }
