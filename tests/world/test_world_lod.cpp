@@ -18,6 +18,7 @@
 #include "voxray/svdag/decode.hpp"
 #include "voxray/tracer.hpp"
 #include "voxray/world/world.hpp"
+#include "world_test_model.hpp"
 #if VOXRAY_WITH_OPENCL
 #include "voxray/opencl.hpp"
 #endif
@@ -154,13 +155,10 @@ void cut_matches_its_reference(const chunked_world& w, const std::vector<placeme
 
 // A world of 16^3 chunks with negative coordinates and 4 LODs.
 chunked_world lod_world() {
-    voxel_model model = scenes::make_builtin("terrain:120", 2);
-    voxel_model noise = random_model(40, 0.05f, 3, glm::ivec3(-50, -20, 30));
-    noise.for_each_voxel([&](glm::ivec3 p, std::uint8_t v) { model.set(p, v); });
     world_options o;
     o.chunk_bits = 4;
     o.threads = 2;
-    return chunked_world(model, o);
+    return chunked_world(world_test_model(), o);
 }
 
 std::vector<placement> uniform_cut(const chunked_world& w, int lod) {

@@ -15,16 +15,16 @@
 #include "hit_bits.hpp"
 #include "random_models.hpp"
 #include "special_rays.hpp"
+#include "test_data.hpp"
 #include "voxray/check/compare.hpp"
 #include "voxray/cpu.hpp"
-#include "voxray/scenes/builtin.hpp"
-#include "voxray/tracer.hpp"
-#include "test_data.hpp"
 #include "voxray/io/mesh_loader.hpp"
+#include "voxray/tracer.hpp"
 #include "voxray/world/mesh_source.hpp"
 #include "voxray/world/model_source.hpp"
 #include "voxray/world/streamed_world.hpp"
 #include "voxray/world/world_build.hpp"
+#include "world_test_model.hpp"
 #if VOXRAY_WITH_OPENCL
 #include "voxray/opencl.hpp"
 #endif
@@ -48,13 +48,6 @@ struct temp_dir {
     ~temp_dir() { fs::remove_all(path); }
 };
 
-voxel_model world_model() {
-    voxel_model model = scenes::make_builtin("terrain:120", 2);
-    voxel_model noise = random_model(40, 0.05f, 3, glm::ivec3(-50, -20, 30));
-    noise.for_each_voxel([&](glm::ivec3 p, std::uint8_t v) { model.set(p, v); });
-    return model;
-}
-
 world_build_options small_chunks(unsigned threads = 2) {
     world_build_options o;
     o.chunk_bits = 4;
@@ -68,7 +61,7 @@ std::vector<char> bytes_of(const fs::path& p) {
 }
 
 TEST(world_build, equals_the_in_memory_world_on_any_thread_count) {
-    voxel_model model = world_model();
+    voxel_model model = world_test_model();
     world_options mo;
     mo.chunk_bits = 4;
     chunked_world memory(model, mo);
@@ -105,7 +98,7 @@ TEST(world_build, equals_the_in_memory_world_on_any_thread_count) {
 }
 
 TEST(world_build, resumes_an_interrupted_build_and_rebuilds_what_is_missing_or_corrupt) {
-    voxel_model model = world_model();
+    voxel_model model = world_test_model();
     temp_dir dir;
     build_world(model_source(model), dir.path, small_chunks());
     world_manifest first = read_manifest(dir.path);
@@ -177,7 +170,7 @@ TEST(world_build, a_mesh_builds_chunk_by_chunk_what_the_voxelizer_makes) {
 }
 
 TEST(world_lod_select, equation_1_splits_near_regions_and_keeps_far_ones_coarse) {
-    voxel_model model = world_model();
+    voxel_model model = world_test_model();
     temp_dir dir;
     build_world(model_source(model), dir.path, small_chunks());
     world_manifest m = read_manifest(dir.path);
@@ -210,7 +203,7 @@ TEST(world_lod_select, equation_1_splits_near_regions_and_keeps_far_ones_coarse)
 template <class Backend>
 void streamed_matches_memory(const char* backend) {
     SCOPED_TRACE(backend);
-    voxel_model model = world_model();
+    voxel_model model = world_test_model();
     temp_dir dir;
     build_world(model_source(model), dir.path, small_chunks());
     world_options mo;
@@ -269,7 +262,7 @@ TEST(world_stream, matches_the_in_memory_world_on_vulkan) { streamed_matches_mem
 #endif
 
 TEST(world_stream, the_budget_holds_and_the_coarse_lods_come_first) {
-    voxel_model model = world_model();
+    voxel_model model = world_test_model();
     temp_dir dir;
     build_world(model_source(model), dir.path, small_chunks());
     world_manifest m = read_manifest(dir.path);
@@ -304,7 +297,7 @@ TEST(world_stream, the_budget_holds_and_the_coarse_lods_come_first) {
 }
 
 TEST(world_stream, a_corrupt_chunk_file_is_reported_and_never_shown) {
-    voxel_model model = world_model();
+    voxel_model model = world_test_model();
     temp_dir dir;
     build_world(model_source(model), dir.path, small_chunks());
     world_manifest m = read_manifest(dir.path);
@@ -334,7 +327,7 @@ TEST(world_stream, a_corrupt_chunk_file_is_reported_and_never_shown) {
 }
 
 TEST(world_stream, rays_see_nothing_new_until_update) {
-    voxel_model model = world_model();
+    voxel_model model = world_test_model();
     temp_dir dir;
     build_world(model_source(model), dir.path, small_chunks());
     residency_options ro;
