@@ -35,8 +35,8 @@ for structure in brickmap naadf; do
     "$VOXRAY" bench "$SCENE" --structure "$structure" --backend vulkan --edits spheres --threads 2 2>/dev/null | tail -n1
     "$VOXRAY" bench "$SCENE" --structure "$structure" --backend vulkan --edits voxel 2>/dev/null | tail -n1
 done
-echo "== open world: $SCENE tiled 4 x 4 x 1, built chunk by chunk (64^3 chunks), then streamed along a camera path (vulkan)"
-"$VOXRAY" world-build "$SCENE" --tile 4 4 1 --chunk-bits 6 --colours --out "$OUT/world" | tail -n1
+echo "== open world: $SCENE tiled 4 x 4 x 1, built chunk by chunk (128^3 chunks), then streamed along a camera path (vulkan)"
+"$VOXRAY" world-build "$SCENE" --tile 4 4 1 --chunk-bits 7 --colours --out "$OUT/world" | tail -n1
 "$VOXRAY" world-fly "$OUT/world" --backend vulkan --frames 8 --factor 2.0 --png-dir "$OUT/world_frames"
 echo "== images, results.jsonl, plots (mrays.png, speed_vs_memory.png, steps.png) and table.md in $OUT"
 exit ${status}
