@@ -38,14 +38,23 @@ function(voxray_vulkan_compile comp name defines)
 endfunction()
 
 # One shader source per structure (preamble, dialect, kernel, the shared entry point),
-# compiled once per trace mode: the mode is a constant in each module.
+# compiled once per trace mode: the mode is a constant in each module. PASSES: one more
+# module, <name>_passes, with the frame passes (and 64-bit atomics, shaders/dialect.glsl).
 function(voxray_vulkan_add_program name)
+    cmake_parse_arguments(arg "" "" "FILES;PASSES" ${ARGN})
     set(dir ${CMAKE_CURRENT_FUNCTION_LIST_DIR})
     set(comp ${VOXRAY_GENERATED}/vulkan/${name}.comp)
-    voxray_flatten(OUTPUT ${comp} LINE_MARKERS FILES ${dir}/shaders/preamble.glsl ${dir}/shaders/dialect.glsl ${ARGN}
+    voxray_flatten(OUTPUT ${comp} LINE_MARKERS FILES ${dir}/shaders/preamble.glsl ${dir}/shaders/dialect.glsl ${arg_FILES}
         ${dir}/shaders/entry.glsl)
     voxray_vulkan_compile(${comp} ${name}_closest "-DVX_TRACE=vx_${name}_trace;-DVX_MODE=VX_MODE_CLOSEST")
     voxray_vulkan_compile(${comp} ${name}_any "-DVX_TRACE=vx_${name}_trace;-DVX_MODE=VX_MODE_ANY")
+    if(arg_PASSES)
+        set(passes ${VOXRAY_GENERATED}/vulkan/${name}_passes.comp)
+        voxray_flatten(OUTPUT ${passes} LINE_MARKERS FILES ${dir}/shaders/preamble.glsl ${dir}/shaders/dialect.glsl
+            ${arg_FILES} ${arg_PASSES} ${dir}/shaders/pass_entry.glsl)
+        voxray_vulkan_compile(${passes} ${name}_passes "-DVX_INT64_ATOMICS=1;-DVX_PASS=vx_${name}_pass")
+        set_property(GLOBAL APPEND PROPERTY VOXRAY_VULKAN_PASSES ${name})
+    endif()
 endfunction()
 
 # The commit shader and the table of every module by name.
@@ -58,10 +67,16 @@ function(voxray_vulkan_finish)
     voxray_vulkan_compile(${comp} commit "")
     set(includes "")
     set(rows "")
+    get_property(with_passes GLOBAL PROPERTY VOXRAY_VULKAN_PASSES)
     foreach(name ${ARGN})
         string(APPEND includes "#include \"voxray/generated/spirv_${name}_closest.hpp\"\n"
                                "#include \"voxray/generated/spirv_${name}_any.hpp\"\n")
-        string(APPEND rows "    {\"${name}\", voxray_spirv_${name}_closest, voxray_spirv_${name}_any},\n")
+        set(passes "")
+        if(name IN_LIST with_passes)
+            string(APPEND includes "#include \"voxray/generated/spirv_${name}_passes.hpp\"\n")
+            set(passes ", voxray_spirv_${name}_passes")
+        endif()
+        string(APPEND rows "    {\"${name}\", voxray_spirv_${name}_closest, voxray_spirv_${name}_any${passes}},\n")
     endforeach()
     file(CONFIGURE OUTPUT ${VOXRAY_GENERATED}/voxray/generated/vulkan_modules.hpp CONTENT
 "// Generated from the voxray_add_structure calls (backends/vulkan/backend.cmake): do not edit.

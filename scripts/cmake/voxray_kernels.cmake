@@ -1,6 +1,6 @@
 # Structure registration and the portable kernels' build steps.
 #
-#   voxray_add_structure(<name> [TYPE <C++ type>...])
+#   voxray_add_structure(<name> [TYPE <C++ type>...] [PASSES <file>...])
 #
 # registers the structure whose files are include/voxray/<name>/ (kernel.h, layout.h,
 # <name>.hpp; TYPE defaults to voxray::<name>; several types share the one kernel, as the
@@ -9,7 +9,10 @@
 # OpenCL C program and its own GLSL shaders (one per trace mode), compiles those to SPIR-V,
 # checks the OpenCL C with clang where clang exists (a kernel error shows up without a
 # device), and adds the structure to the type list the tool and the conformance tests
-# iterate. voxray_finish_structures() writes the tables that map names to programs.
+# iterate. PASSES (files under include/voxray/, e.g. world/frame.h) adds the structure's
+# frame passes: one more OpenCL entry (vx_pass_<name>) and SPIR-V module (<name>_passes),
+# both calling vx_<name>_pass(blob, frame, pass, item).
+# voxray_finish_structures() writes the tables that map names to programs.
 # The CPU side needs no CMake: the host header includes kernels/cpu_kernel.inc.
 
 # The shared dialect every kernel builds on, in dependency order.
@@ -52,7 +55,7 @@ function(voxray_kernel_files out)
 endfunction()
 
 function(voxray_add_structure name)
-    cmake_parse_arguments(arg "" "" "TYPE" ${ARGN})
+    cmake_parse_arguments(arg "" "" "TYPE;PASSES" ${ARGN})
     if(NOT arg_TYPE)
         set(arg_TYPE "voxray::${name}")
     endif()
@@ -65,13 +68,21 @@ function(voxray_add_structure name)
     set_property(GLOBAL APPEND PROPERTY VOXRAY_STRUCTURES ${name})
     set_property(GLOBAL APPEND PROPERTY VOXRAY_STRUCTURE_TYPES "${arg_TYPE}")
     voxray_kernel_files(kernel_files ${name}/kernel.h)
+    set(pass_files "")
+    set(entry_lines "VX_OPENCL_ENTRY(${name})\n")
+    foreach(f ${arg_PASSES})
+        list(APPEND pass_files ${PROJECT_SOURCE_DIR}/include/voxray/${f})
+    endforeach()
+    if(arg_PASSES)
+        string(APPEND entry_lines "VX_OPENCL_PASS_ENTRY(${name})\n")
+    endif()
 
-    # OpenCL C: preamble, dialect, kernel, the entry macros and this structure's entry line.
+    # OpenCL C: preamble, dialect, kernel (and passes), the entry macros and this structure's entry lines.
     set(cl ${VOXRAY_GENERATED}/opencl/${name}.cl)
     set(entry ${VOXRAY_GENERATED}/opencl/${name}_entry.cl)
-    file(CONFIGURE OUTPUT ${entry} CONTENT "VX_OPENCL_ENTRY(${name})\n")
+    file(CONFIGURE OUTPUT ${entry} CONTENT "${entry_lines}")
     set(cl_dir ${PROJECT_SOURCE_DIR}/backends/opencl/kernels)
-    voxray_flatten(OUTPUT ${cl} LINE_MARKERS FILES ${cl_dir}/preamble.cl ${kernel_files} ${cl_dir}/entry.cl ${entry})
+    voxray_flatten(OUTPUT ${cl} LINE_MARKERS FILES ${cl_dir}/preamble.cl ${kernel_files} ${pass_files} ${cl_dir}/entry.cl ${entry})
     set(outputs ${cl})
     if(VOXRAY_CLANG)
         set(stamp ${VOXRAY_GENERATED}/opencl/${name}.cl.checked)
@@ -107,7 +118,7 @@ function(voxray_add_structure name)
         voxray_opencl_add_program(${name} ${cl})
     endif()
     if(TARGET voxray_vulkan)
-        voxray_vulkan_add_program(${name} ${kernel_files})
+        voxray_vulkan_add_program(${name} FILES ${kernel_files} PASSES ${pass_files})
     endif()
     add_custom_target(voxray_kernel_${name} ALL DEPENDS ${outputs})
 endfunction()

@@ -161,30 +161,6 @@ chunked_world lod_world() {
     return chunked_world(world_test_model(), o);
 }
 
-std::vector<placement> uniform_cut(const chunked_world& w, int lod) {
-    std::vector<placement> cut;
-    glm::ivec3 n = (w.grid().cells + (1 << lod) - 1) >> lod;
-    for (int z = 0; z < n.z; ++z)
-        for (int y = 0; y < n.y; ++y)
-            for (int x = 0; x < n.x; ++x)
-                if (const chunk_record* c = w.find({lod, {x, y, z}})) cut.push_back({c->key, c});
-    return cut;
-}
-
-// The coarsest LOD everywhere; LOD 1 over the lower half in x; LOD 0 in every cell whose
-// x + y + z is even within it: coarse chunks split around finer ones, cells next to cells
-// of other LODs everywhere.
-std::vector<placement> split_cut(const chunked_world& w) {
-    int top = w.grid().top_lod;
-    auto cut = uniform_cut(w, top);
-    int half = w.grid().cells.x / 2;
-    for (auto& p : uniform_cut(w, 1))
-        if ((p.key.cell.x << 1) < half) cut.push_back(p);
-    for (auto& p : uniform_cut(w, 0))
-        if (p.key.cell.x < half && (p.key.cell.x + p.key.cell.y + p.key.cell.z) % 2 == 0) cut.push_back(p);
-    return cut;
-}
-
 template <class Backend>
 void every_cut(const char* backend) {
     chunked_world w = lod_world();

@@ -16,3 +16,12 @@
 #define VX_OPENCL_ENTRY(name)                                 \
     VX_OPENCL_ENTRY_MODE(name, vx_closest_, VX_MODE_CLOSEST)  \
     VX_OPENCL_ENTRY_MODE(name, vx_any_, VX_MODE_ANY)
+
+/* A structure's frame passes (voxray_add_structure ... PASSES; the world's are
+ * world/frame.h), looked up as vx_pass_<name>: one work-item per item of `pass`. */
+#define VX_OPENCL_PASS_ENTRY(name)                                                            \
+    __kernel void vx_pass_##name(__global const uint* blob, __global uint* frame, uint pass,  \
+                                 uint count) {                                                \
+        uint i = (uint)get_global_id(0);                                                      \
+        if (i < count) vx_##name##_pass(blob, frame, pass, i);                                \
+    }

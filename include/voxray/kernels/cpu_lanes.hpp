@@ -61,6 +61,22 @@ inline void vx_select_state_into(bool m, const State& a, State& into) {
 #include "voxray/kernels/stack.h"
 #include "voxray/kernels/bits.h"
 #include "voxray/svdag/walk.h"
+
+// Frame words (world/frame.h, scalar lanes only): one item per call, threads share the
+// frame, so counters and the visibility buffer use the same atomics as the GPUs.
+typedef std::uint64_t __attribute__((may_alias)) vx_frame_u64;
+inline float vx_bits_f(std::uint32_t x) { return std::bit_cast<float>(x); }
+inline std::uint32_t vx_frame_load(const std::uint32_t* f, std::uint32_t i) { return __atomic_load_n(f + i, __ATOMIC_RELAXED); }
+inline void vx_frame_store(std::uint32_t* f, std::uint32_t i, std::uint32_t v) { __atomic_store_n(f + i, v, __ATOMIC_RELAXED); }
+inline std::uint32_t vx_atomic_add(std::uint32_t* f, std::uint32_t i, std::uint32_t v) {
+    return __atomic_fetch_add(f + i, v, __ATOMIC_RELAXED);
+}
+inline void vx_atomic_max64(std::uint32_t* f, std::uint32_t i, std::uint32_t hi, std::uint32_t lo) {
+    auto* word = reinterpret_cast<vx_frame_u64*>(f + i);  // i is even: 8-byte aligned
+    std::uint64_t v = (std::uint64_t(hi) << 32) | lo, old = __atomic_load_n(word, __ATOMIC_RELAXED);
+    while (old < v && !__atomic_compare_exchange_n(word, &old, v, true, __ATOMIC_RELAXED, __ATOMIC_RELAXED)) {
+    }
+}
 }  // namespace scalar
 
 // Each SIMD lane set is compiled for its own ISA whatever the build flags (GCC: a target

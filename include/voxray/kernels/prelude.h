@@ -56,8 +56,17 @@ typedef bool vx_mask;
 #define vx_i2u(x) as_uint(x)
 #define vx_u2i(x) as_int(x)
 #define vx_f_bits(x) as_uint(x)
+#define vx_bits_f(x) as_float(x)
 #define vx_floor(x) floor(x)
 #define vx_any(m) (m)
+/* Frame words (read-write, one item per work-item; world/frame.h), and their atomics. */
+#define VX_FRAME __global uint*
+#define VX_PRECISE
+#define vx_frame_load(f, i) ((f)[(i)])
+#define vx_frame_store(f, i, v) ((f)[(i)] = (v))
+#define vx_atomic_add(f, i, v) atomic_add(&(f)[(i)], (v))
+#define vx_atomic_max64(f, i, hi, lo) \
+    atom_max((volatile __global ulong*)&(f)[(i)], ((ulong)(hi) << 32) | (ulong)(lo))
 /* Spelled like the C++ lanes (kernels/cpu_lanes.hpp), not as OpenCL fmin/fmax: those
  * return the other operand for a NaN (the C++ select returns the second) and leave the
  * sign of min(+0, -0) to the device, so t could be -0 on one backend and +0 on another. */
@@ -90,8 +99,17 @@ static inline float vx_fmax(float a, float b) { return a > b ? a : b; }
 #define vx_i2u(x) uint(x)
 #define vx_u2i(x) int(x)
 #define vx_f_bits(x) floatBitsToUint(x)
+#define vx_bits_f(x) uintBitsToFloat(x)
 #define vx_floor(x) floor(x)
 #define vx_any(m) (m)
+/* Frame words by address (world/frame.h); the 64-bit view needs VX_INT64_ATOMICS
+ * (backends/vulkan/shaders/dialect.glsl). `precise` keeps a*b+c two roundings, as in C++. */
+#define VX_FRAME uvec2
+#define VX_PRECISE precise
+#define vx_frame_load(f, i) (vx_words_rw(f).w[(i)])
+#define vx_frame_store(f, i, v) (vx_words_rw(f).w[(i)] = (v))
+#define vx_atomic_add(f, i, v) atomicAdd(vx_words_rw(f).w[(i)], (v))
+#define vx_atomic_max64(f, i, hi, lo) atomicMax(vx_words64(f).w[(i) >> 1], packUint2x32(uvec2((lo), (hi))))
 /* Spelled like the C++ lanes (kernels/cpu_lanes.hpp), not as GLSL min/max: those leave
  * the result for a NaN operand undefined (lavapipe returns the other operand, the C++
  * select returns b), so a NaN would steer the GPU and the CPU down different cells. */
@@ -114,6 +132,8 @@ layout(buffer_reference, std430, buffer_reference_align = 4) readonly buffer vx_
 #define VX_REF(p) (p)
 #define VX_ADDR(x) (x)
 #define VX_UNUSED(x) ((void)(x))
+#define VX_FRAME std::uint32_t*
+#define VX_PRECISE
 #endif
 
 /* A float is finite when its exponent bits are not all ones (works without isfinite,

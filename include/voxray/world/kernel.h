@@ -28,6 +28,9 @@ VX_END_STRUCT(vx_world)
 VX_STRUCT(vx_wd_state)
     vx_sv_state walk;
     vx_u32 region;        /* level of the directory region the lane's chunk stands for */
+    vx_u32 only;          /* 0, or the one entry (child word) the walk enters: the frame
+                             passes march a ray through one chunk (world/frame.h), and
+                             leave every other entry's region as if it were empty */
 VX_END_STRUCT(vx_wd_state)
 
 VX_FN vx_world vx_world_load(VX_BLOB blob) {
@@ -53,6 +56,7 @@ VX_FN vx_wd_state vx_world_begin(vx_world g, vx_ray r) {
     vx_wd_state st;
     st.walk = vx_sv_begin(g.f, r, g.ox, g.oy, g.oz);
     st.region = vx_u32_splat(0u);
+    st.only = vx_u32_splat(0u);
     return st;
 }
 
@@ -83,7 +87,7 @@ VX_FN vx_wd_state vx_world_step(VX_BLOB blob, vx_world g, vx_wd_state st) {
             node = vx_sel(searching && !stop, child, node);
             searching = searching && !stop;
         }
-        vx_mask present = between && found != 0u;
+        vx_mask present = between && found != 0u && (st.only == 0u || found == st.only);
         vx_u32 entry = found - VX_WD_CHILD_IS_ENTRY;
         vx_u32 dag = vx_gather_masked(blob, present, entry + VX_WD_ENTRY_DAG);
         vx_u32 lod = vx_gather_masked(blob, present, entry + VX_WD_ENTRY_LOD);

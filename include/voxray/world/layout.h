@@ -10,10 +10,14 @@
  *  blob
  *  +-------------------------------+ word 0
  *  | header (20 words)             |  magic 'VXWD', version, origin, extent, shift (xyz
- *  |                               |  each), chunk_bits, root level, root, attribute kind
+ *  |                               |  each), chunk_bits, root level, root, attribute kind,
+ *  |                               |  chunk table offset and rows
  *  +-------------------------------+ header.root
  *  | directory: an octree over the |  nodes of 8 child words; entries of 4 words
  *  | cells, its leaves the entries |
+ *  +-------------------------------+ header.table
+ *  | chunk table: one row of 8     |  the entries as a flat list, with their boxes, for
+ *  | words per entry               |  the frame passes (world/frame.h)
  *  +-------------------------------+
  *  | chunk DAGs (svdag/layout.h)   |  each a whole svdag blob, header included, whose
  *  |                               |  pointers are relative to its own header: a chunk's
@@ -37,6 +41,14 @@
  *      bits  31 30 | 29 ......... 20 | 19 ......... 10 | 9 .......... 0
  *             0  0 |        z        |        y        |       x
  *
+ *  chunk table row (8 words): an entry and its solid box in walk voxels, which the frame
+ *  passes cull and draw chunk by chunk (a coarse chunk split around finer ones keeps its
+ *  whole box: the walk restricted to its entry skips the finer chunks' regions):
+ *   word 0   the entry's child word (entry offset | VX_WD_CHILD_IS_ENTRY)
+ *   word 1-3 box min x, y, z (walk voxels, signed)
+ *   word 4-6 box max x, y, z, exclusive
+ *   word 7   the chunk's LOD
+ *
  * Coordinates: walk voxel (0,0,0) is the world's min corner (world position `origin`,
  * where the reference walk starts too, so every t is computed from the same numbers);
  * walk + shift is the grid coordinate, whose cell (0,0,0) starts at a multiple of
@@ -46,7 +58,7 @@
 #define VOXRAY_LAYOUT_WORLD_LAYOUT_H
 
 #define VX_WD_MAGIC 0x44575856u /* "VXWD" little endian */
-#define VX_WD_VERSION 1u
+#define VX_WD_VERSION 2u
 
 #define VX_WD_HEADER_MAGIC 0
 #define VX_WD_HEADER_VERSION 1
@@ -57,6 +69,8 @@
 #define VX_WD_HEADER_ROOT_LEVEL 12   /* the root node's region is 2^root_level cells a side */
 #define VX_WD_HEADER_ROOT 13         /* word offset of the root node */
 #define VX_WD_HEADER_ATTRIBUTE_KIND 14 /* VX_SV_ATTRIBUTES_*, the same in every chunk */
+#define VX_WD_HEADER_TABLE 15        /* word offset of the chunk table */
+#define VX_WD_HEADER_TABLE_ROWS 16   /* its rows: one per entry */
 #define VX_WD_HEADER_WORDS 20
 
 #define VX_WD_NODE_WORDS 8
@@ -66,6 +80,12 @@
 #define VX_WD_ENTRY_LOD 1
 #define VX_WD_ENTRY_BOX_MIN 2
 #define VX_WD_ENTRY_BOX_MAX 3
+
+#define VX_WD_ROW_WORDS 8
+#define VX_WD_ROW_ENTRY 0
+#define VX_WD_ROW_MIN 1
+#define VX_WD_ROW_MAX 4
+#define VX_WD_ROW_LOD 7
 
 #define VX_WD_MIN_CHUNK_BITS 4       /* a chunk holds whole 16^3 model chunks */
 #define VX_WD_MAX_CHUNK_BITS 10      /* box coordinates are 10 bits */

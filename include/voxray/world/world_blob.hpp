@@ -145,6 +145,8 @@ public:
         }
         entries_at_ = words_;
         words_ += VX_WD_ENTRY_WORDS * dir_.entries.size();
+        table_at_ = words_;
+        words_ += VX_WD_ROW_WORDS * dir_.entries.size();
     }
 
     // Header and directory words.
@@ -164,11 +166,13 @@ public:
         // The walk covers the shown chunks' solid boxes (a coarse voxel may reach past the
         // finest data's bounds), and starts at their min corner, as the reference's does.
         box3i bounds;
+        std::vector<box3i> boxes;  // each entry's solid box, world voxels
         for (auto& e : dir_.entries) {
             const chunk_record& c = *e.chunk;
             glm::ivec3 base = grid_.origin + ((e.key.cell << e.key.lod) << grid_.chunk_bits);
-            bounds.include(base + (c.solid_min << e.key.lod));
-            bounds.include(base + ((c.solid_max + 1) << e.key.lod) - 1);
+            boxes.push_back({base + (c.solid_min << e.key.lod), base + ((c.solid_max + 1) << e.key.lod)});
+            bounds.include(boxes.back().min);
+            bounds.include(boxes.back().max - 1);
         }
         glm::ivec3 extent = bounds.extent();
         glm::ivec3 start = bounds.empty() ? grid_.origin : bounds.min;
@@ -184,6 +188,8 @@ public:
         w[VX_WD_HEADER_ROOT_LEVEL] = std::uint32_t(grid_.top_lod + 1);
         w[VX_WD_HEADER_ROOT] = VX_WD_HEADER_WORDS;
         w[VX_WD_HEADER_ATTRIBUTE_KIND] = kind_;
+        w[VX_WD_HEADER_TABLE] = std::uint32_t(table_at_);
+        w[VX_WD_HEADER_TABLE_ROWS] = std::uint32_t(dir_.entries.size());
         for (std::size_t n = 0; n < dir_.nodes.size(); ++n) {
             if (node_at_[n] < 0) continue;
             for (std::size_t o = 0; o < 8; ++o) {
@@ -202,6 +208,13 @@ public:
             w[e + VX_WD_ENTRY_LOD] = std::uint32_t(dir_.entries[i].key.lod);
             w[e + VX_WD_ENTRY_BOX_MIN] = pack_chunk_voxel(c.solid_min);
             w[e + VX_WD_ENTRY_BOX_MAX] = pack_chunk_voxel(c.solid_max);
+            std::uint64_t row = table_at_ + VX_WD_ROW_WORDS * i;
+            w[row + VX_WD_ROW_ENTRY] = std::uint32_t(e) | VX_WD_CHILD_IS_ENTRY;
+            for (int a = 0; a < 3; ++a) {
+                w[row + VX_WD_ROW_MIN + a] = std::uint32_t(boxes[i].min[a] - start[a]);
+                w[row + VX_WD_ROW_MAX + a] = std::uint32_t(boxes[i].max[a] - start[a]);
+            }
+            w[row + VX_WD_ROW_LOD] = std::uint32_t(dir_.entries[i].key.lod);
         }
     }
 
@@ -210,7 +223,7 @@ private:
     std::uint32_t kind_;
     world_pack::directory dir_;
     std::vector<std::int64_t> node_at_;
-    std::uint64_t words_ = 0, entries_at_ = 0;
+    std::uint64_t words_ = 0, entries_at_ = 0, table_at_ = 0;
 };
 
 // The whole blob of a cut: header, directory, then each chunk's DAG once.

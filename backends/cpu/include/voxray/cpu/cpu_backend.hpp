@@ -129,6 +129,9 @@ public:
     // For tests and diagnostics, like the GPU engines': a copy of the blob traced.
     std::vector<std::uint32_t> download_blob() const { return {view_.begin(), view_.end()}; }
 
+    // The words traced, for passes that run beside the trace (world/frame.hpp).
+    std::span<const std::uint32_t> blob_view() const { return view_; }
+
     // The workers this engine runs on (shared with other tracers when cpu_options::pool was given).
     const std::shared_ptr<thread_pool>& pool() const { return pool_; }
 

@@ -180,6 +180,50 @@ public:
         if (count > 0) enqueue_trace(rays, hits, cl_uint(count), mode);
     }
 
+    // Frame passes (structures registered with PASSES; world/frame.hpp drives them): a
+    // frame buffer of words (grow-only; growing drops its contents), host access to it,
+    // and one pass run to completion. The kernel is vx_pass_<name> in the structure's program.
+    void frame_reserve(std::size_t words) {
+        std::uint64_t bytes = std::max<std::uint64_t>(std::uint64_t(words) * 4, 8);
+        check_alloc_limit("the frame buffer", bytes, ctx_->max_alloc_bytes(), ctx_->device_name());
+        frame_.reserve(ctx_->context(), bytes);
+    }
+    void frame_write(std::size_t at, std::span<const std::uint32_t> words) {
+        check_frame_range(at, words.size());
+        if (words.empty()) return;
+        check(clEnqueueWriteBuffer(queue_.get(), frame_.get(), CL_TRUE, at * 4, words.size_bytes(), words.data(), 0,
+                                   nullptr, nullptr),
+              "clEnqueueWriteBuffer", "writing frame words");
+    }
+    void frame_read(std::size_t at, std::span<std::uint32_t> words) {
+        check_frame_range(at, words.size());
+        if (words.empty()) return;
+        check(clEnqueueReadBuffer(queue_.get(), frame_.get(), CL_TRUE, at * 4, words.size_bytes(), words.data(), 0,
+                                  nullptr, nullptr),
+              "clEnqueueReadBuffer", "reading frame words");
+    }
+    void run_pass(std::uint32_t pass, std::uint64_t count) {
+        if (!uploaded_) fail("OpenCL: a frame pass ran before any structure was uploaded");
+        if (!frame_.get()) fail("OpenCL: a frame pass ran before the frame buffer was reserved");
+        if (count == 0) return;
+        if (count > std::numeric_limits<cl_uint>::max() - local_size_)
+            fail("OpenCL: ", count, " items in one frame pass, more than its 32-bit count allows");
+        if (!pass_) pass_ = create_kernel(ctx_->program(program_), std::string("vx_pass_") + Kernel::name);
+        cl_mem blob = blob_.get(), frame = frame_.get();
+        cl_uint n = cl_uint(count);
+        check(clSetKernelArg(pass_.get(), 0, sizeof blob, &blob), "clSetKernelArg", "setting the blob");
+        check(clSetKernelArg(pass_.get(), 1, sizeof frame, &frame), "clSetKernelArg", "setting the frame");
+        check(clSetKernelArg(pass_.get(), 2, sizeof pass, &pass), "clSetKernelArg", "setting the pass");
+        check(clSetKernelArg(pass_.get(), 3, sizeof n, &n), "clSetKernelArg", "setting the count");
+        std::size_t local = std::min(local_size_, group_size_for(pass_.get()));
+        std::size_t global = (std::size_t(n) + local - 1) / local * local;
+        check(clEnqueueNDRangeKernel(queue_.get(), pass_.get(), 1, nullptr, &global, &local, 0, nullptr, nullptr),
+              "clEnqueueNDRangeKernel", "running frame pass " + std::to_string(pass));
+        check(clFinish(queue_.get()), "clFinish", "running frame pass " + std::to_string(pass));
+    }
+    // Bytes of device memory the frame buffer holds.
+    std::uint64_t frame_bytes() const { return frame_.capacity(); }
+
     std::string device_name() const { return ctx_->device_name(); }
     std::string platform_name() const { return ctx_->platform_name(); }
     // Seconds this structure's program took to build (once per device and process).
@@ -192,6 +236,11 @@ private:
     void count_upload(std::uint64_t bytes) {
         last_bytes_ = bytes;
         total_bytes_ += bytes;
+    }
+
+    void check_frame_range(std::size_t at, std::size_t n) const {
+        if ((at + n) * 4 > frame_.capacity())
+            fail("OpenCL: frame words [", at, ", ", at + n, ") outside the frame buffer's ", frame_.capacity() / 4, " words");
     }
 
     // Kernel arguments are captured at enqueue time, so the kernel object is free for the
@@ -238,11 +287,13 @@ private:
     std::shared_ptr<device_context> ctx_;
     queue_handle queue_;
     kernel_handle closest_, any_;
+    kernel_handle pass_;  // vx_pass_<name>, looked up on the first frame pass
     committer committer_;
     // Read-write: the commit kernel writes it; the trace kernels only read it.
     device_buffer blob_{CL_MEM_READ_WRITE, "the structure blob"};
     device_buffer rays_{CL_MEM_READ_ONLY, "rays"};
     device_buffer hits_{CL_MEM_WRITE_ONLY, "hits"};
+    device_buffer frame_{CL_MEM_READ_WRITE, "the frame buffer"};
     std::size_t local_size_ = 1;
     bool uploaded_ = false;
     std::size_t blob_words_ = 0;

@@ -54,6 +54,7 @@ struct candidate {
     VkPhysicalDeviceProperties properties{};
     std::uint32_t queue_family = 0;
     bool portability_subset = false;
+    bool int64_atomics = false;  // shaderInt64 and shaderBufferInt64Atomics (the frame passes)
     std::string problem;
 };
 
@@ -72,6 +73,7 @@ inline candidate inspect(VkPhysicalDevice pd) {
         c.problem = "lacks the bufferDeviceAddress feature";
         return c;
     }
+    c.int64_atomics = features.features.shaderInt64 && v12.shaderBufferInt64Atomics;
     std::uint32_t n = 0;
     vkGetPhysicalDeviceQueueFamilyProperties(pd, &n, nullptr);
     std::vector<VkQueueFamilyProperties> families(n);
@@ -122,6 +124,10 @@ public:
 
     // False on the application's device (vulkan_options::user_device): nothing to destroy.
     bool owns_device() const { return owns_; }
+    // Whether 64-bit buffer atomics are enabled (the frame passes' visibility buffer):
+    // on a device voxray creates, wherever the device has them; never assumed of the
+    // application's device, whose enabled features voxray cannot see.
+    bool int64_atomics() const { return owns_ && chosen_.int64_atomics; }
 
 private:
     // The application's handles: checked, then used as they are, never destroyed.
@@ -264,11 +270,16 @@ private:
         queue.queueFamilyIndex = chosen_.queue_family;
         queue.queueCount = 1;
         queue.pQueuePriorities = &priority;
-        // Buffer device addresses are the only optional feature the shaders use: their
-        // addresses travel as uvec2, so shaderInt64 is not needed.
+        // Buffer device addresses are the only feature the trace shaders need (addresses
+        // travel as uvec2, so not even shaderInt64); the frame passes' 64-bit atomics are
+        // enabled where the device has them.
         auto v12 = vk_struct<VkPhysicalDeviceVulkan12Features>(VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES);
         v12.bufferDeviceAddress = VK_TRUE;
+        v12.shaderBufferInt64Atomics = chosen_.int64_atomics ? VK_TRUE : VK_FALSE;
+        VkPhysicalDeviceFeatures core{};
+        core.shaderInt64 = chosen_.int64_atomics ? VK_TRUE : VK_FALSE;
         auto info = vk_struct<VkDeviceCreateInfo>(VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO, &v12);
+        info.pEnabledFeatures = &core;
         info.queueCreateInfoCount = 1;
         info.pQueueCreateInfos = &queue;
         const char* portability = "VK_KHR_portability_subset";

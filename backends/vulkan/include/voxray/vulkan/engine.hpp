@@ -34,6 +34,7 @@
 #include "voxray/vulkan/device.hpp"
 #include "voxray/vulkan/interop.hpp"
 #include "voxray/vulkan/options.hpp"
+#include "voxray/vulkan/passes.hpp"
 #include "voxray/vulkan/pipeline.hpp"
 
 namespace voxray::vulkan_detail {
@@ -85,6 +86,7 @@ public:
         std::swap(closest_, o.closest_);
         std::swap(any_, o.any_);
         std::swap(committer_, o.committer_);
+        std::swap(passes_, o.passes_);
         std::swap(blob_, o.blob_);
         std::swap(rays_, o.rays_);
         std::swap(hits_, o.hits_);
@@ -239,6 +241,20 @@ public:
         if (count > 0) record_dispatches(cmd, in, out, count, mode);
     }
 
+    // Frame passes (structures registered with PASSES; world/frame.hpp drives them): a
+    // frame buffer of words, host access to it, and one pass run to completion.
+    void frame_reserve(std::size_t words) { passes_.reserve(*ctx_, words); }
+    void frame_write(std::size_t at, std::span<const std::uint32_t> words) { passes_.write(*ctx_, *commands_, at, words); }
+    void frame_read(std::size_t at, std::span<std::uint32_t> words) { passes_.read(*ctx_, *commands_, at, words); }
+    void run_pass(std::uint32_t pass, std::uint64_t count)
+        requires(!modules_.passes.empty())
+    {
+        if (!blob_.handle()) fail("vulkan: a frame pass ran before any structure was uploaded");
+        if (count > 0) passes_.run(*ctx_, *commands_, modules_.passes, blob_.address(), pass, count);
+    }
+    // Bytes of device memory the frame buffer holds.
+    std::uint64_t frame_bytes() const { return passes_.bytes(); }
+
     std::string device_name() const { return ctx_->name(); }
     // Type, limits (maxStorageBufferRange...) and API version of the device in use.
     const VkPhysicalDeviceProperties& device_properties() const { return ctx_->properties(); }
@@ -340,6 +356,7 @@ private:
     std::unique_ptr<command_stream> commands_;
     std::unique_ptr<compute_pipeline> closest_, any_;  // one pipeline per trace mode
     committer committer_;
+    pass_runner passes_;
     buffer blob_, rays_, hits_, rays_staging_, hits_staging_;
     std::size_t slice_ = max_slice_rays;
     double pipeline_seconds_ = 0;

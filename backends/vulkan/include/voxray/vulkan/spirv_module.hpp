@@ -1,5 +1,5 @@
 // The SPIR-V modules that trace one structure kernel, one per trace mode (the mode is a
-// constant in each). The generated table (voxray/generated/vulkan_modules.hpp) lists one
+// constant in each), and its frame passes' module where it has one. The generated table (voxray/generated/vulkan_modules.hpp) lists one
 // row per voxray_add_structure call; find_modules is evaluated at compile time, so a
 // structure without modules is a compile-time error, not a run-time surprise.
 #pragma once
@@ -13,6 +13,7 @@ struct spirv_modules {
     std::string_view name;
     std::span<const std::uint32_t> closest;
     std::span<const std::uint32_t> any;
+    std::span<const std::uint32_t> passes = {};  // structures registered with PASSES (the world's frame)
 };
 
 }  // namespace voxray::vulkan_detail
