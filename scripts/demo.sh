@@ -2,7 +2,8 @@
 # The main job: install what is missing, build, render the built-in scene on every
 # backend to PNG, run the benchmark matrix (every structure and baseline: Embree, NanoVDB)
 # into a results file and print its table, the editing figures of brickmap and NAADF, and
-# an open world built chunk by chunk and streamed along a camera path.
+# an open world built chunk by chunk and streamed along a camera path, traced ray by ray
+# and drawn by the GPU-driven passes.
 set -euo pipefail
 source "$(dirname "${BASH_SOURCE[0]}")/setup.sh"
 install_packages
@@ -38,5 +39,7 @@ done
 echo "== open world: $SCENE tiled 4 x 4 x 1, built chunk by chunk (128^3 chunks), then streamed along a camera path (vulkan)"
 "$VOXRAY" world-build "$SCENE" --tile 4 4 1 --chunk-bits 7 --colours --out "$OUT/world" | tail -n1
 "$VOXRAY" world-fly "$OUT/world" --backend vulkan --frames 8 --factor 2.0 --png-dir "$OUT/world_frames"
+echo "== the same path drawn by the GPU-driven passes (chunk and tile selection, visibility buffer, Hi-Z, colour resolve), ms per pass (vulkan)"
+"$VOXRAY" world-fly "$OUT/world" --backend vulkan --frames 8 --factor 2.0 --passes --png-dir "$OUT/world_pass_frames"
 echo "== images, results.jsonl, plots (mrays.png, speed_vs_memory.png, steps.png) and table.md in $OUT"
 exit ${status}

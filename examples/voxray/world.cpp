@@ -2,13 +2,15 @@
 // path through it with streaming. world-build writes the chunk files and the manifest
 // (world/world_build.hpp) plus voxray-world.json (the scene's up axis and palette, for
 // shading); world-fly streams the world along a camera path (world/streamed_world.hpp),
-// traces each frame on a backend, and reports per frame what was resident and what it cost.
+// traces each frame on a backend (or, with --passes, renders it with the GPU-driven
+// passes of world/frame.hpp), and reports per frame what was resident and what it cost.
 #include <sys/resource.h>
 
 #include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
+#include <optional>
 
 #include <nlohmann/json.hpp>
 
@@ -18,6 +20,7 @@
 #include "scene.hpp"
 #include "voxray/io/mesh_loader.hpp"
 #include "voxray/rays.hpp"
+#include "voxray/world/frame.hpp"
 #include "voxray/world/mesh_source.hpp"
 #include "voxray/world/model_source.hpp"
 #include "voxray/world/streamed_world.hpp"
@@ -112,7 +115,7 @@ struct fly_options {
     std::string dir, backend = "cpu", png_dir, json_out;
     int frames = 24, width = 640, height = 360;
     double factor = 2.0, budget_mib = 1024;
-    bool lod0 = false;
+    bool lod0 = false, passes = false;
 };
 
 // The camera path: along the world's longest horizontal axis, a third of the way up,
@@ -157,8 +160,15 @@ int fly(const fly_options& o) {
     std::ofstream out;
     if (!o.json_out.empty()) out.open(o.json_out, std::ios::app);
     double disk = double(m.disk_bytes());
-    std::printf("%5s %9s %9s %9s %10s %8s %12s %10s %8s\n", "frame", "update ms", "upload ms", "trace ms", "sent KiB",
-                "chunks", "resident MiB", "device MiB", "of disk");
+    std::optional<world_frame<Backend, streamed_world>> passes;  // --passes: the GPU-driven frame
+    if (o.passes) passes.emplace(t);
+    float far_depth = glm::length(glm::vec3(m.bounds.extent())) * 1.5f + 64.0f;
+    if (o.passes)
+        std::printf("%5s %9s %9s %9s %9s %9s %9s %9s %7s %7s %8s %12s %8s\n", "frame", "update ms", "upload ms", "select ms",
+                    "march ms", "hi-z ms", "resolve", "frame ms", "visible", "pairs", "chunks", "resident MiB", "of disk");
+    else
+        std::printf("%5s %9s %9s %9s %10s %8s %12s %10s %8s\n", "frame", "update ms", "upload ms", "trace ms", "sent KiB",
+                    "chunks", "resident MiB", "device MiB", "of disk");
     double peak_share = 0;
     for (int f = 0; f < o.frames; ++f) {
         camera cam = path_camera(m.bounds, up_axis, f, o.frames);
@@ -167,20 +177,55 @@ int fly(const fly_options& o) {
         auto t1 = std::chrono::steady_clock::now();
         t.update(world);
         auto t2 = std::chrono::steady_clock::now();
-        auto rays = primary_rays(cam, o.width, o.height);
-        std::vector<hit> hits(rays.size()), shadow(rays.size());
-        t.closest_hit(rays, hits);
-        glm::vec3 sun = sun_direction(up_axis);
-        auto shadow_set = shadow_rays(rays, hits, sun);
-        t.any_hit(shadow_set, shadow);
-        auto t3 = std::chrono::steady_clock::now();
         auto ms = [](auto a, auto b) { return std::chrono::duration<double, std::milli>(b - a).count(); };
+        glm::vec3 sun = sun_direction(up_axis);
+        std::vector<ray> rays;
+        std::vector<hit> hits, shadow;
+        frame_stats fs;
+        if (o.passes) {
+            frame_view view(cam, o.width, o.height, far_depth);
+            fs = passes->render(view, world.blob());
+            // The visibility word's face and the resolved attribute are all shading needs.
+            auto vis = passes->visibility();
+            auto materials = passes->materials();
+            hits.resize(materials.size());
+            for (int y = 0; y < o.height; ++y)
+                for (int x = 0; x < o.width; ++x) rays.push_back(world_frame<Backend, streamed_world>::pixel_ray(view, x, y));
+            for (std::size_t i = 0; i < hits.size(); ++i) {
+                if (!(vis[2 * i] | vis[2 * i + 1])) continue;
+                hits[i].status = VX_STATUS_HIT;
+                hits[i].normal = static_cast<face>(VX_WF_FACE(vis[2 * i + 1]));
+                hits[i].material = materials[i];
+            }
+            shadow.resize(hits.size());  // the passes make primary visibility only: no shadows
+        } else {
+            rays = primary_rays(cam, o.width, o.height);
+            hits.resize(rays.size()), shadow.resize(rays.size());
+            t.closest_hit(rays, hits);
+            auto shadow_set = shadow_rays(rays, hits, sun);
+            t.any_hit(shadow_set, shadow);
+        }
+        auto t3 = std::chrono::steady_clock::now();
         auto s = world.residency().stats();
         double share = double(s.resident_bytes) / disk;
         peak_share = std::max(peak_share, share);
-        std::printf("%5d %9.1f %9.1f %9.1f %10.1f %8llu %12.2f %10.2f %7.1f%%\n", f, ms(t0, t1), ms(t1, t2), ms(t2, t3),
-                    double(t.bytes_uploaded_last_update()) / 1024.0, (unsigned long long)s.resident_chunks,
-                    double(s.resident_bytes) / 1048576.0, double(world.bytes()) / 1048576.0, 100.0 * share);
+        auto pass_ms = [&](std::initializer_list<frame_stats::step> steps) {
+            double sum = 0;
+            for (auto k : steps) sum += fs.ms[k];
+            return sum;
+        };
+        if (o.passes)
+            std::printf("%5d %9.1f %9.1f %9.1f %9.1f %9.1f %9.1f %9.1f %7u %7u %8llu %12.2f %7.1f%%\n", f, ms(t0, t1),
+                        ms(t1, t2), pass_ms({frame_stats::select_chunks, frame_stats::select_tiles, frame_stats::select_again}),
+                        pass_ms({frame_stats::march, frame_stats::march_again}),
+                        pass_ms({frame_stats::build_hiz, frame_stats::build_hiz_again}),
+                        pass_ms({frame_stats::clear, frame_stats::resolve}), fs.total_ms(),
+                        fs.visible_chunks, fs.pairs + fs.pairs_again, (unsigned long long)s.resident_chunks,
+                        double(s.resident_bytes) / 1048576.0, 100.0 * share);
+        else
+            std::printf("%5d %9.1f %9.1f %9.1f %10.1f %8llu %12.2f %10.2f %7.1f%%\n", f, ms(t0, t1), ms(t1, t2), ms(t2, t3),
+                        double(t.bytes_uploaded_last_update()) / 1024.0, (unsigned long long)s.resident_chunks,
+                        double(s.resident_bytes) / 1048576.0, double(world.bytes()) / 1048576.0, 100.0 * share);
         if (!o.png_dir.empty()) {
             std::vector<std::uint8_t> rgb(rays.size() * 3);
             for (std::size_t i = 0; i < rays.size(); ++i) {
@@ -193,14 +238,25 @@ int fly(const fly_options& o) {
             std::snprintf(name, sizeof name, "frame_%03d.png", f);
             write_png((std::filesystem::path(o.png_dir) / name).string(), o.width, o.height, rgb);
         }
-        if (out)
-            out << json{{"world", o.dir}, {"backend", Backend::name}, {"factor", o.lod0 ? 0.0 : o.factor}, {"lod0", o.lod0},
-                        {"frame", f}, {"update_ms", ms(t0, t1)}, {"upload_ms", ms(t1, t2)}, {"trace_ms", ms(t2, t3)},
-                        {"sent_bytes", t.bytes_uploaded_last_update()}, {"resident_chunks", s.resident_chunks},
-                        {"resident_bytes", s.resident_bytes}, {"device_bytes", world.bytes()}, {"disk_bytes", m.disk_bytes()},
-                        {"failures", s.failures}}
-                       .dump()
-                << "\n";
+        if (out) {
+            json line{{"world", o.dir}, {"backend", Backend::name}, {"factor", o.lod0 ? 0.0 : o.factor}, {"lod0", o.lod0},
+                      {"frame", f}, {"update_ms", ms(t0, t1)}, {"upload_ms", ms(t1, t2)}, {"trace_ms", ms(t2, t3)},
+                      {"sent_bytes", t.bytes_uploaded_last_update()}, {"resident_chunks", s.resident_chunks},
+                      {"resident_bytes", s.resident_bytes}, {"device_bytes", world.bytes()}, {"disk_bytes", m.disk_bytes()},
+                      {"failures", s.failures}};
+            if (o.passes) {
+                json per_pass = json::object();
+                for (std::size_t k = 0; k < fs.ms.size(); ++k) per_pass[std::string(frame_stats::pass_names[k])] = fs.ms[k];
+                line["passes"] = per_pass;
+                line["visible_chunks"] = fs.visible_chunks;
+                line["pairs"] = fs.pairs;
+                line["pairs_again"] = fs.pairs_again;
+                line["frame_buffer_bytes"] = fs.frame_bytes;
+                line["width"] = o.width;
+                line["height"] = o.height;
+            }
+            out << line.dump() << "\n";
+        }
     }
     for (auto& e : world.residency().errors()) std::fprintf(stderr, "not shown: %s\n", e.c_str());
     std::printf("peak resident share of the world on disk (%.1f MiB): %.2f%%\n", disk / 1048576.0, 100.0 * peak_share);
@@ -235,6 +291,8 @@ command add_world_fly(CLI::App& parent) {
     app->add_option("--factor", o->factor, "StreamingFactor of LOD selection (Aokana Eq. 1)")->check(CLI::Range(0.01, 1000.0))->capture_default_str();
     app->add_option("--budget-mib", o->budget_mib, "most chunk bytes resident")->check(CLI::Range(1.0, 1e7))->capture_default_str();
     app->add_flag("--lod0", o->lod0, "every chunk at LOD 0, no budget: the reference frames");
+    app->add_flag("--passes", o->passes, "render with the GPU-driven passes (chunk and tile selection, Hi-Z, visibility "
+                  "buffer, colour resolve), timed pass by pass; primary visibility only, no shadow rays");
     app->add_option("--png-dir", o->png_dir, "write frame_NNN.png here");
     app->add_option("--json", o->json_out, "append one JSON line a frame");
     return {app, [o] {

@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # voxray world-build then world-fly end to end: a tiled built-in scene built chunk by chunk,
 # built again (every chunk resumed), flown on every backend (exit 0 only when no chunk
-# failed to load), and a clear error for a folder that holds no world.
+# failed to load), traced and drawn by the GPU-driven passes (the same PNGs on every
+# backend), and a clear error for a folder that holds no world.
 set -euo pipefail
 tool="$1"; work="$2"
 rm -rf "$work"
@@ -15,6 +16,11 @@ for backend in cpu cpu-scalar opencl vulkan; do
         --png-dir "$work/frames_$backend" | tee "$work.fly.txt"
     grep -q "peak resident share" "$work.fly.txt"
     [ -f "$work/frames_$backend/frame_002.png" ]
+    "$tool" world-fly "$work/world" --backend "$backend" --frames 3 --width 64 --height 36 --factor 2.0 \
+        --passes --png-dir "$work/passes_$backend" | tee "$work.passes.txt"
+    grep -q "march ms" "$work.passes.txt"
+    # The passes draw the same frames on every backend, to the byte.
+    for f in 0 1 2; do cmp "$work/passes_cpu/frame_00$f.png" "$work/passes_$backend/frame_00$f.png"; done
 done
 mkdir -p "$work/empty"
 if "$tool" world-fly "$work/empty" 2> "$work.err.txt"; then echo "no error for a folder without a world"; exit 1; fi

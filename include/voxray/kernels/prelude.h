@@ -65,8 +65,14 @@ typedef bool vx_mask;
 #define vx_frame_load(f, i) ((f)[(i)])
 #define vx_frame_store(f, i, v) ((f)[(i)] = (v))
 #define vx_atomic_add(f, i, v) atomic_add(&(f)[(i)], (v))
+#if defined(cl_khr_int64_extended_atomics)
 #define vx_atomic_max64(f, i, hi, lo) \
     atom_max((volatile __global ulong*)&(f)[(i)], ((ulong)(hi) << 32) | (ulong)(lo))
+#else
+/* Without 64-bit atomics a program with frame passes still builds, for tracing; the engine
+ * refuses to run its passes (opencl/engine.hpp). */
+#define vx_atomic_max64(f, i, hi, lo) ((void)(f), (void)(i), (void)(hi), (void)(lo))
+#endif
 /* Spelled like the C++ lanes (kernels/cpu_lanes.hpp), not as OpenCL fmin/fmax: those
  * return the other operand for a NaN (the C++ select returns the second) and leave the
  * sign of min(+0, -0) to the device, so t could be -0 on one backend and +0 on another. */

@@ -3,6 +3,7 @@
 // blob places (world/world_blob.hpp).
 #pragma once
 #include <cstdint>
+#include <tuple>
 
 #include <glm/glm.hpp>
 
@@ -23,6 +24,14 @@ struct chunk_key {
     int lod = 0;
     glm::ivec3 cell{0};
     bool operator==(const chunk_key&) const = default;
+};
+
+// The one order chunks are kept in (the manifest, the residency sets, the directory's
+// slots): by (lod, z, y, x).
+struct chunk_key_less {
+    bool operator()(const chunk_key& a, const chunk_key& b) const {
+        return std::tie(a.lod, a.cell.z, a.cell.y, a.cell.x) < std::tie(b.lod, b.cell.z, b.cell.y, b.cell.x);
+    }
 };
 
 struct chunk_record {

@@ -221,8 +221,20 @@ VX_FN void vx_wf_march(VX_BLOB blob, VX_FRAME f, uint item) {
     s = vx_wf_slab(s, r.oy, r.dy, vx_wf_box(blob, row, VX_WD_ROW_MIN, 1u), vx_wf_box(blob, row, VX_WD_ROW_MAX, 1u));
     s = vx_wf_slab(s, r.oz, r.dz, vx_wf_box(blob, row, VX_WD_ROW_MIN, 2u), vx_wf_box(blob, row, VX_WD_ROW_MAX, 2u));
     if (!(s.t0 <= s.t1)) return;
-    /* Past the box, the walk finds nothing of this chunk: stop there (with a margin for the
-     * slab's rounding; a later stop only costs steps). */
+    /* A hit already in that is strictly nearer than the box cannot be beaten by this chunk
+     * (its hits are no nearer than its box): skip the walk. Strictly, so a tie still goes
+     * to the atomic max and the buffer is the same whatever order the pairs run in. The
+     * host orders visible chunks nearest first (world/frame.hpp), so most pixels behind a
+     * near surface skip the chunks behind it. */
+    uint at = vx_frame_load(f, VX_WF_HEADER_VISIBILITY_AT) + 2u * vx_i2u(py * v.width + px);
+    if (VX_WF_DEPTH(vx_frame_load(f, at + 1u)) > vx_wf_depth_key(s.t0, v.depth_scale)) return;
+    /* The walk finds nothing of this chunk outside its box: start two voxels before it
+     * (|d| >= 1, and the walk restricted to this chunk sees only empty space there, so it
+     * enters the box as a walk from the camera would: the DDA's crossings are computed from
+     * the origin, not accumulated), and stop past it (with a margin for the slab's rounding;
+     * a later stop only costs steps). Skipping the directory walk from the camera to the
+     * chunk is most of the march's saving over tracing the whole world per pair. */
+    r.tmin = vx_fmax(s.t0 - 2.0f, 0.0f);
     r.tmax = s.t1 * 1.0001f + 0.01f;
     vx_world g = vx_world_load(blob);
     vx_wd_state st = vx_world_begin(g, r);
@@ -235,7 +247,6 @@ VX_FN void vx_wf_march(VX_BLOB blob, VX_FRAME f, uint item) {
     uint x = (vx_i2u(st.walk.w.cx + g.f.shx) >> lod) & last;
     uint y = (vx_i2u(st.walk.w.cy + g.f.shy) >> lod) & last;
     uint z = (vx_i2u(st.walk.w.cz + g.f.shz) >> lod) & last;
-    uint at = vx_frame_load(f, VX_WF_HEADER_VISIBILITY_AT) + 2u * vx_i2u(py * v.width + px);
     vx_atomic_max64(f, at, VX_WF_PACK_HI(key, st.walk.w.face, k), VX_WF_PACK_LO(k, x, y, z));
 }
 

@@ -57,10 +57,15 @@ struct frame_view {
 
 // One render's counts and per-pass milliseconds (wall time, each pass run to completion).
 struct frame_stats {
-    static constexpr std::array<std::string_view, 9> pass_names{
+    // A frame's steps in order: tile selection, march and Hi-Z run a second time against
+    // this frame's own Hi-Z (the tiles the previous one culled wrongly).
+    enum step : std::size_t {
+        clear, select_chunks, select_tiles, march, build_hiz, select_again, march_again, build_hiz_again, resolve, steps
+    };
+    static constexpr std::array<std::string_view, steps> pass_names{
         "clear", "select chunks", "select tiles", "march", "build hi-z", "select again", "march again",
         "build hi-z again", "resolve"};
-    std::array<double, 9> ms{};
+    std::array<double, steps> ms{};
     std::uint32_t table_rows = 0, visible_chunks = 0, pairs = 0, pairs_again = 0;
     std::uint64_t frame_bytes = 0;  // the frame buffer on the device
     int restarts = 0;               // the pair list grew: the frame ran again from the start
@@ -181,27 +186,47 @@ private:
         header_[VX_WF_HEADER_HIZ_PREVIOUS] = std::uint32_t(previous_);
         write_words(0, header_);
         std::size_t n_pixels = pixels(), n_tiles = tiles();
-        timed(s, 0, VX_WF_PASS_CLEAR, n_pixels);
-        timed(s, 1, VX_WF_PASS_SELECT_CHUNKS, s.table_rows);
+        timed(s, frame_stats::clear, VX_WF_PASS_CLEAR, n_pixels);
+        timed(s, frame_stats::select_chunks, VX_WF_PASS_SELECT_CHUNKS, s.table_rows);
         s.visible_chunks = std::min(read_word(VX_WF_HEADER_VISIBLE_COUNT), s.table_rows);
         visible_ = s.visible_chunks;
         if (s.visible_chunks > VX_WF_MAX_CHUNKS)
             fail("world frame: ", s.visible_chunks, " chunks in view, more than the visibility buffer's 13-bit chunk "
                  "id holds (", VX_WF_MAX_CHUNKS, "): use larger chunks or a smaller streaming factor");
-        timed(s, 2, VX_WF_PASS_SELECT_TILES, s.visible_chunks);
+        auto t0 = std::chrono::steady_clock::now();
+        order_nearest_first(s.visible_chunks);
+        s.ms[frame_stats::select_chunks] += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+        timed(s, frame_stats::select_tiles, VX_WF_PASS_SELECT_TILES, s.visible_chunks);
         s.pairs = read_word(VX_WF_HEADER_PAIR_COUNT);
         if (grow_pairs(s.pairs)) return false;
-        timed(s, 3, VX_WF_PASS_MARCH, std::uint64_t(s.pairs) * VX_WF_TILE_PIXELS);
-        timed(s, 4, VX_WF_PASS_BUILD_HIZ, n_tiles);
+        timed(s, frame_stats::march, VX_WF_PASS_MARCH, std::uint64_t(s.pairs) * VX_WF_TILE_PIXELS);
+        timed(s, frame_stats::build_hiz, VX_WF_PASS_BUILD_HIZ, n_tiles);
         std::array<std::uint32_t, 1> zero{0};
         write_words(VX_WF_HEADER_PAIR_COUNT, zero);
-        timed(s, 5, VX_WF_PASS_SELECT_TILES_AGAIN, s.visible_chunks);
+        timed(s, frame_stats::select_again, VX_WF_PASS_SELECT_TILES_AGAIN, s.visible_chunks);
         s.pairs_again = read_word(VX_WF_HEADER_PAIR_COUNT);
         if (grow_pairs(s.pairs_again)) return false;
-        timed(s, 6, VX_WF_PASS_MARCH, std::uint64_t(s.pairs_again) * VX_WF_TILE_PIXELS);
-        timed(s, 7, VX_WF_PASS_BUILD_HIZ, n_tiles);
-        timed(s, 8, VX_WF_PASS_RESOLVE, n_pixels);
+        timed(s, frame_stats::march_again, VX_WF_PASS_MARCH, std::uint64_t(s.pairs_again) * VX_WF_TILE_PIXELS);
+        timed(s, frame_stats::build_hiz_again, VX_WF_PASS_BUILD_HIZ, n_tiles);
+        timed(s, frame_stats::resolve, VX_WF_PASS_RESOLVE, n_pixels);
         return true;
+    }
+
+    // Sorts the visible chunks nearest first (by near key, then table row), so pairs march
+    // roughly front to back and the march skips pixels a nearer chunk already covers
+    // (world/frame.h); it also makes the chunk ids, which the atomic appends leave in any
+    // order, the same on every backend. A few KiB each way, once a frame.
+    void order_nearest_first(std::size_t count) {
+        if (count < 2) return;
+        std::size_t at = header_[VX_WF_HEADER_VISIBLE_AT];
+        auto words = read_words(at, VX_WF_VISIBLE_WORDS * count);
+        std::vector<std::array<std::uint32_t, VX_WF_VISIBLE_WORDS>> chunks(count);
+        for (std::size_t k = 0; k < count; ++k) std::copy_n(&words[k * VX_WF_VISIBLE_WORDS], VX_WF_VISIBLE_WORDS, chunks[k].begin());
+        std::sort(chunks.begin(), chunks.end(), [](auto& a, auto& b) {
+            return a[3] != b[3] ? a[3] > b[3] : a[0] < b[0];  // words 3 and 0: near key, table row
+        });
+        for (std::size_t k = 0; k < count; ++k) std::copy_n(chunks[k].begin(), VX_WF_VISIBLE_WORDS, &words[k * VX_WF_VISIBLE_WORDS]);
+        write_words(at, words);
     }
 
     bool grow_pairs(std::uint32_t count) {
@@ -210,10 +235,10 @@ private:
         return true;
     }
 
-    void timed(frame_stats& s, int slot, std::uint32_t pass, std::uint64_t items) {
+    void timed(frame_stats& s, frame_stats::step step, std::uint32_t pass, std::uint64_t items) {
         auto t0 = std::chrono::steady_clock::now();
         run(pass, items);
-        s.ms[std::size_t(slot)] += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+        s.ms[step] += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
     }
 
     std::uint32_t read_word(int at) { return read_words(std::size_t(at), 1)[0]; }

@@ -28,7 +28,6 @@
 #include <filesystem>
 #include <fstream>
 #include <string>
-#include <tuple>
 #include <vector>
 
 #include "voxray/core/box.hpp"
@@ -60,16 +59,13 @@ struct world_manifest {
     std::uint32_t source_hash = 0;
     std::vector<manifest_chunk> chunks;  // the non-empty ones, sorted by (lod, z, y, x)
 
-    static bool key_less(const chunk_key& a, const chunk_key& b) {
-        return std::tie(a.lod, a.cell.z, a.cell.y, a.cell.x) < std::tie(b.lod, b.cell.z, b.cell.y, b.cell.x);
-    }
     void sort() {
-        std::sort(chunks.begin(), chunks.end(), [](auto& a, auto& b) { return key_less(a.key, b.key); });
+        std::sort(chunks.begin(), chunks.end(), [](auto& a, auto& b) { return chunk_key_less{}(a.key, b.key); });
     }
     // The chunk of that key, or nullptr when that region has no voxels at that LOD.
     const manifest_chunk* find(const chunk_key& k) const {
         auto it = std::lower_bound(chunks.begin(), chunks.end(), k,
-                                   [](const manifest_chunk& c, const chunk_key& key) { return key_less(c.key, key); });
+                                   [](const manifest_chunk& c, const chunk_key& key) { return chunk_key_less{}(c.key, key); });
         return it != chunks.end() && it->key == k ? &*it : nullptr;
     }
     std::uint64_t disk_bytes(int lod = -1) const {
@@ -196,7 +192,7 @@ inline world_manifest read_manifest(const std::filesystem::path& dir) {
         glm::ivec3 limit = (m.grid.cells + (1 << c.key.lod) - 1) >> c.key.lod;
         for (int a = 0; a < 3; ++a)
             check(c.key.cell[a] >= 0 && c.key.cell[a] < limit[a], at + 4 + 4 * std::size_t(a), c.key.cell[a], "a cell inside the grid");
-        check(i == 0 || world_manifest::key_less(m.chunks[i - 1].key, c.key), at, i, "chunks sorted and unique");
+        check(i == 0 || chunk_key_less{}(m.chunks[i - 1].key, c.key), at, i, "chunks sorted and unique");
     }
     return m;
 }

@@ -84,7 +84,7 @@ public:
         {
             std::lock_guard lock(mutex_);
             queue_.clear();
-            std::set<chunk_key, key_order> arrived;  // loaded, not yet committed
+            std::set<chunk_key, chunk_key_less> arrived;  // loaded, not yet committed
             for (auto& c : loaded_) arrived.insert(c.key);
             for (auto& k : to_load)
                 if (!failed_.count(k) && !arrived.count(k)) queue_.push_back(k);
@@ -110,7 +110,7 @@ public:
             resident_.emplace(key, std::make_unique<chunk_record>(std::move(c)));
             changed = true;
         }
-        std::set<chunk_key, key_order> keep(pinned_.begin(), pinned_.end());
+        std::set<chunk_key, chunk_key_less> keep(pinned_.begin(), pinned_.end());
         for (auto& k : wanted_) {
             if (resident_.count(k)) {
                 keep.insert(k);
@@ -133,7 +133,7 @@ public:
     // The resident chunks the rays should see: the wanted ones, and stand-ins for the
     // wanted ones not resident (pack_world applies them coarse to fine).
     std::vector<placement> placements() const {
-        std::set<chunk_key, key_order> shown;
+        std::set<chunk_key, chunk_key_less> shown;
         for (auto& k : wanted_) {
             if (resident_.count(k))
                 shown.insert(k);
@@ -175,10 +175,6 @@ public:
     }
 
 private:
-    struct key_order {
-        bool operator()(const chunk_key& a, const chunk_key& b) const { return world_manifest::key_less(a, b); }
-    };
-
     std::uint64_t file_bytes(const chunk_key& k) const {
         auto* c = manifest_.find(k);
         return c ? c->file_bytes : 0;
@@ -241,15 +237,15 @@ private:
     residency_options options_;
     world_manifest manifest_;
     lod_tree tree_;
-    std::set<chunk_key, key_order> pinned_, wanted_;
-    std::map<chunk_key, std::unique_ptr<chunk_record>, key_order> resident_;  // owned by the caller's thread
+    std::set<chunk_key, chunk_key_less> pinned_, wanted_;
+    std::map<chunk_key, std::unique_ptr<chunk_record>, chunk_key_less> resident_;  // owned by the caller's thread
     std::uint64_t evictions_ = 0;
 
     mutable std::mutex mutex_;  // guards what the loader shares: the queue, arrivals, failures, stats
     std::condition_variable wake_, idle_;
     std::deque<chunk_key> queue_;
     std::vector<chunk_record> loaded_;
-    std::set<chunk_key, key_order> failed_;
+    std::set<chunk_key, chunk_key_less> failed_;
     std::vector<std::string> errors_;
     residency_stats stats_;
     bool busy_ = false, stop_ = false;

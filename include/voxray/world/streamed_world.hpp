@@ -63,10 +63,6 @@ private:
     struct slot {
         std::uint64_t offset = 0, words = 0;
     };
-    struct key_order {
-        bool operator()(const chunk_key& a, const chunk_key& b) const { return world_manifest::key_less(a, b); }
-    };
-
     // Places the residency manager's cut: frees the slots of chunks no longer shown,
     // copies new ones into free space (growing the pool when none fits), rewrites the
     // directory. True when anything changed.
@@ -78,7 +74,7 @@ private:
         shown_keys_ = std::move(keys);
         world_directory dir(residency_.manifest().grid, cut, residency_.manifest().attributes);
         auto shown = dir.chunks();
-        std::map<chunk_key, const chunk_record*, key_order> wanted;
+        std::map<chunk_key, const chunk_record*, chunk_key_less> wanted;
         for (auto* c : shown) wanted[c->key] = c;
         bool changed = false;
         for (auto it = slots_.begin(); it != slots_.end();) {
@@ -122,14 +118,14 @@ private:
 
     // A new blob: the directory area, then the shown DAGs kept, packed, and free space
     // for those to come (twice the budget's worth of the pool, or what is needed).
-    void reallocate(std::uint64_t directory_capacity, const std::map<chunk_key, const chunk_record*, key_order>& wanted) {
+    void reallocate(std::uint64_t directory_capacity, const std::map<chunk_key, const chunk_record*, chunk_key_less>& wanted) {
         directory_capacity_ = std::max<std::uint64_t>(directory_capacity, 4096);
         std::uint64_t dags = 0;
         for (auto& [k, c] : wanted) dags += c->dag.size();
         std::uint64_t pool = std::max<std::uint64_t>(dags * 2, std::uint64_t(1) << 16);
         check_blob_size("world-streamed", directory_capacity_ + pool);
         blob_words next(directory_capacity_ + pool, 0u);
-        std::map<chunk_key, slot, key_order> kept;
+        std::map<chunk_key, slot, chunk_key_less> kept;
         std::uint64_t cursor = directory_capacity_;
         for (auto& [k, s] : slots_) {
             std::copy(words_.begin() + std::ptrdiff_t(s.offset), words_.begin() + std::ptrdiff_t(s.offset + s.words),
@@ -174,7 +170,7 @@ private:
     residency_manager residency_;
     blob_words words_;
     std::uint64_t directory_capacity_ = 0, directory_used_ = 0;
-    std::map<chunk_key, slot, key_order> slots_;
+    std::map<chunk_key, slot, chunk_key_less> slots_;
     std::map<std::uint64_t, std::uint64_t> free_;  // offset -> words
     std::vector<word_range> dirty_;
     std::vector<chunk_key> shown_keys_;  // the cut the blob holds

@@ -208,7 +208,13 @@ public:
         if (count == 0) return;
         if (count > std::numeric_limits<cl_uint>::max() - local_size_)
             fail("OpenCL: ", count, " items in one frame pass, more than its 32-bit count allows");
-        if (!pass_) pass_ = create_kernel(ctx_->program(program_), std::string("vx_pass_") + Kernel::name);
+        if (!pass_) {
+            // The visibility buffer's nearest hit is a 64-bit atomic max (world/frame.h).
+            if (device_string(ctx_->device(), CL_DEVICE_EXTENSIONS).find("cl_khr_int64_extended_atomics") == std::string::npos)
+                fail("OpenCL: the frame passes need cl_khr_int64_extended_atomics, which ", ctx_->device_name(),
+                     " does not offer");
+            pass_ = create_kernel(ctx_->program(program_), std::string("vx_pass_") + Kernel::name);
+        }
         cl_mem blob = blob_.get(), frame = frame_.get();
         cl_uint n = cl_uint(count);
         check(clSetKernelArg(pass_.get(), 0, sizeof blob, &blob), "clSetKernelArg", "setting the blob");
