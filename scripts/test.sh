@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Installs what is missing, builds, and runs the whole ctest suite with every backend
-# required (a missing OpenCL or Vulkan device fails, it does not skip). Then three CPU-only
+# required (a missing OpenCL or Vulkan device fails, it does not skip). Then two CPU-only
 # passes, each a build without OpenCL, Vulkan and Embree (which also proves such a build
 # works) that configures only the test folders its ctest labels select:
 #   ASan + UBSan  builds and runs every CPU label (cpu, io, mesh, malformed, brickmap, naadf, svdag, world, sync, conformance, nanovdb);

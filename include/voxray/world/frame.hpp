@@ -55,7 +55,8 @@ struct frame_view {
     }
 };
 
-// One render's counts and per-pass milliseconds (wall time, each pass run to completion).
+// One render's counts and per-pass milliseconds (wall time, each pass run to completion;
+// select_chunks includes the host's nearest-first sort of what it found).
 struct frame_stats {
     // A frame's steps in order: tile selection, march and Hi-Z run a second time against
     // this frame's own Hi-Z (the tiles the previous one culled wrongly).
