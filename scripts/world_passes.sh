@@ -23,7 +23,7 @@ for backend in ${BACKENDS:-cpu opencl vulkan}; do
         # shellcheck disable=SC2086
         "$BUILD_DIR/voxray" world-fly "$WORLD" $mode --backend "$backend" --frames "${FRAMES:-8}" \
             --width "${WIDTH:-640}" --height "${HEIGHT:-360}" --factor "${FACTOR:-2.0}" \
-            --png-dir "$WORK/$NAME/$backend${mode}" --json "$out.jsonl"
+            --png-dir "$WORK/$NAME/$backend${mode:+-passes}" --json "$out.jsonl"
     done
 done
 /usr/bin/python3 "$ROOT/scripts/world_passes_table.py" "$out.jsonl" --out "$out.md"

@@ -185,19 +185,22 @@ int fly(const fly_options& o) {
         if (o.passes) {
             frame_view view(cam, o.width, o.height, far_depth);
             fs = passes->render(view, world.blob());
-            // The visibility word's face and the resolved attribute are all shading needs.
-            auto vis = passes->visibility();
-            auto materials = passes->materials();
-            hits.resize(materials.size());
-            for (int y = 0; y < o.height; ++y)
-                for (int x = 0; x < o.width; ++x) rays.push_back(world_frame<Backend, streamed_world>::pixel_ray(view, x, y));
-            for (std::size_t i = 0; i < hits.size(); ++i) {
-                if (!(vis[2 * i] | vis[2 * i + 1])) continue;
-                hits[i].status = VX_STATUS_HIT;
-                hits[i].normal = static_cast<face>(VX_WF_FACE(vis[2 * i + 1]));
-                hits[i].material = materials[i];
+            if (!o.png_dir.empty()) {
+                // Read back only for the PNG: the visibility word's face and the resolved
+                // attribute are all shading needs; the pixels' rays give the sky.
+                auto vis = passes->visibility();
+                auto materials = passes->materials();
+                hits.resize(materials.size());
+                for (int y = 0; y < o.height; ++y)
+                    for (int x = 0; x < o.width; ++x) rays.push_back(world_frame<Backend, streamed_world>::pixel_ray(view, x, y));
+                for (std::size_t i = 0; i < hits.size(); ++i) {
+                    if (!(vis[2 * i] | vis[2 * i + 1])) continue;
+                    hits[i].status = VX_STATUS_HIT;
+                    hits[i].normal = static_cast<face>(VX_WF_FACE(vis[2 * i + 1]));
+                    hits[i].material = materials[i];
+                }
+                shadow.resize(hits.size());  // the passes make primary visibility only: no shadows
             }
-            shadow.resize(hits.size());  // the passes make primary visibility only: no shadows
         } else {
             rays = primary_rays(cam, o.width, o.height);
             hits.resize(rays.size()), shadow.resize(rays.size());
