@@ -7,7 +7,7 @@
 set -euo pipefail
 source "$(dirname "${BASH_SOURCE[0]}")/setup.sh"
 install_packages
-configure_and_build
+configure_and_build voxray_tool  # only what the demo runs: the tests are scripts/test.sh's
 
 SCENE="${SCENE:-builtin:terrain}"
 OUT="$BUILD_DIR/demo"

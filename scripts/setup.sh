@@ -27,11 +27,12 @@ install_packages() {
     DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
 }
 
+# configure_and_build [TARGET...]: everything, or only the targets named (and what they need).
 configure_and_build() {
     echo "== configure ($BUILD_DIR)"
     cmake -S "$ROOT" -B "$BUILD_DIR" -DCMAKE_BUILD_TYPE=Release -DVOXRAY_REQUIRE_ALL_BACKENDS=ON ${CMAKE_EXTRA:-} >/dev/null
-    echo "== build ($(nproc) jobs)"
-    cmake --build "$BUILD_DIR" -j"$(nproc)"
+    echo "== build ($(nproc) jobs${1:+: $*})"
+    cmake --build "$BUILD_DIR" -j"$(nproc)" ${1:+--target "$@"}
 }
 
 # PoCL needs a writable cache directory, or it reports zero devices.

@@ -20,8 +20,8 @@ target_include_directories(voxray_opencl ${VOXRAY_SYSTEM} INTERFACE
 target_link_libraries(voxray_opencl INTERFACE voxray::voxray OpenCL::OpenCL)
 # The host code uses the 1.2 API only (clCreateCommandQueue, no SVM): say so, which
 # also silences the headers' "defaulting to 3.0" message and 2.0 deprecations.
-# VOXRAY_LINKED_OPENCL: voxray/opencl.hpp refuses to compile without it (see vulkan.hpp).
-target_compile_definitions(voxray_opencl INTERFACE CL_TARGET_OPENCL_VERSION=120 VOXRAY_LINKED_OPENCL=1)
+# VOXRAY_LINKED_OPENCL (voxray_tracer_backend, below): voxray/opencl.hpp refuses to compile without it.
+target_compile_definitions(voxray_opencl INTERFACE CL_TARGET_OPENCL_VERSION=120)
 if(VOXRAY_INSTALL)
     install(DIRECTORY ${CMAKE_CURRENT_LIST_DIR}/include/ DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
 endif()
@@ -77,4 +77,4 @@ inline constexpr program_source commit_program{\"commit\", voxray_opencl_commit}
     endif()
 endfunction()
 
-voxray_backend_added(opencl voxray_opencl)
+voxray_tracer_backend(opencl voxray_opencl HEADER voxray/opencl.hpp TYPES voxray::opencl)

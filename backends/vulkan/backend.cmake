@@ -38,7 +38,7 @@ function(voxray_vulkan_compile comp name defines)
 endfunction()
 
 # One shader source per structure (preamble, dialect, kernel, the shared entry point),
-# compiled once per trace mode: the mode is a constant in each module. PASSES: one more
+# compiled once: the trace mode is a specialization constant (shaders/entry.glsl). PASSES: one more
 # module, <name>_passes, with the frame passes (and 64-bit atomics, shaders/dialect.glsl).
 function(voxray_vulkan_add_program name)
     cmake_parse_arguments(arg "" "" "FILES;PASSES" ${ARGN})
@@ -46,8 +46,7 @@ function(voxray_vulkan_add_program name)
     set(comp ${VOXRAY_GENERATED}/vulkan/${name}.comp)
     voxray_flatten(OUTPUT ${comp} LINE_MARKERS FILES ${dir}/shaders/preamble.glsl ${dir}/shaders/dialect.glsl ${arg_FILES}
         ${dir}/shaders/entry.glsl)
-    voxray_vulkan_compile(${comp} ${name}_closest "-DVX_TRACE=vx_${name}_trace;-DVX_MODE=VX_MODE_CLOSEST")
-    voxray_vulkan_compile(${comp} ${name}_any "-DVX_TRACE=vx_${name}_trace;-DVX_MODE=VX_MODE_ANY")
+    voxray_vulkan_compile(${comp} ${name}_trace "-DVX_TRACE=vx_${name}_trace")
     if(arg_PASSES)
         set(passes ${VOXRAY_GENERATED}/vulkan/${name}_passes.comp)
         voxray_flatten(OUTPUT ${passes} LINE_MARKERS FILES ${dir}/shaders/preamble.glsl ${dir}/shaders/dialect.glsl
@@ -69,14 +68,13 @@ function(voxray_vulkan_finish)
     set(rows "")
     get_property(with_passes GLOBAL PROPERTY VOXRAY_VULKAN_PASSES)
     foreach(name ${ARGN})
-        string(APPEND includes "#include \"voxray/generated/spirv_${name}_closest.hpp\"\n"
-                               "#include \"voxray/generated/spirv_${name}_any.hpp\"\n")
+        string(APPEND includes "#include \"voxray/generated/spirv_${name}_trace.hpp\"\n")
         set(passes "")
         if(name IN_LIST with_passes)
             string(APPEND includes "#include \"voxray/generated/spirv_${name}_passes.hpp\"\n")
             set(passes ", voxray_spirv_${name}_passes")
         endif()
-        string(APPEND rows "    {\"${name}\", voxray_spirv_${name}_closest, voxray_spirv_${name}_any${passes}},\n")
+        string(APPEND rows "    {\"${name}\", voxray_spirv_${name}_trace${passes}},\n")
     endforeach()
     file(CONFIGURE OUTPUT ${VOXRAY_GENERATED}/voxray/generated/vulkan_modules.hpp CONTENT
 "// Generated from the voxray_add_structure calls (backends/vulkan/backend.cmake): do not edit.
@@ -107,11 +105,11 @@ target_include_directories(voxray_vulkan ${VOXRAY_SYSTEM} INTERFACE
     $<BUILD_INTERFACE:${VOXRAY_GENERATED}>
     $<INSTALL_INTERFACE:${CMAKE_INSTALL_INCLUDEDIR}>)
 target_link_libraries(voxray_vulkan INTERFACE voxray::voxray Vulkan::Vulkan)
-# voxray/vulkan.hpp refuses to compile without it: a program that includes the header but
-# does not link voxray::vulkan fails with one clear message, not dozens of undefined symbols.
-target_compile_definitions(voxray_vulkan INTERFACE VOXRAY_LINKED_VULKAN=1)
+# VOXRAY_LINKED_VULKAN (voxray_tracer_backend, below): voxray/vulkan.hpp refuses to compile
+# without it, so a program that includes the header but does not link voxray::vulkan
+# fails with one clear message, not dozens of undefined symbols.
 
 if(VOXRAY_INSTALL)
     install(DIRECTORY ${CMAKE_CURRENT_LIST_DIR}/include/ DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
 endif()
-voxray_backend_added(vulkan voxray_vulkan)
+voxray_tracer_backend(vulkan voxray_vulkan HEADER voxray/vulkan.hpp TYPES voxray::vulkan)

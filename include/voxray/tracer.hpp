@@ -2,18 +2,7 @@
 // voxray::opencl or voxray::vulkan is the only change a user makes to move a
 // structure to another backend; there are no virtual calls on the hot path.
 //
-// A backend is a type with
-//   using options = ...;                            // start-up settings
-//   template <class Kernel> class engine {          // one per structure kernel
-//       engine(options);
-//       void upload(std::span<const std::uint32_t> blob);
-//       void update_ranges(std::span<const std::uint32_t> blob, std::span<const word_range>);
-//       void trace(std::span<const ray>, std::span<hit>, std::uint32_t mode);
-//       std::uint64_t bytes_uploaded_last_update() const;
-//       // optional (GPU backends): rays and hits in the application's device buffers
-//       void trace_device(DeviceBuffer rays, DeviceBuffer hits, std::size_t count, std::uint32_t mode);
-//       void record_trace(CommandBuffer, DeviceBuffer rays, DeviceBuffer hits, std::size_t count, std::uint32_t mode);
-//   };
+// What a backend must offer: voxray/backend_contract.hpp (concepts, checked below).
 // The tracer owns a snapshot of the structure's blob as of construction or the last
 // update(); the structure itself may be changed or destroyed afterwards.
 //
@@ -42,6 +31,7 @@
 #include <string_view>
 #include <vector>
 
+#include "voxray/backend_contract.hpp"
 #include "voxray/core/error.hpp"
 #include "voxray/core/hit.hpp"
 #include "voxray/core/ray.hpp"
@@ -59,13 +49,6 @@ concept structure = requires(const S& s) {
     { S::kernel::name } -> std::convertible_to<const char*>;
     { S::name } -> std::convertible_to<std::string_view>;
     { s.blob() } -> std::convertible_to<std::span<const std::uint32_t>>;
-};
-
-// What a backend must offer (see the comment at the top).
-template <class B>
-concept backend = requires {
-    typename B::options;
-    { B::name } -> std::convertible_to<const char*>;
 };
 
 // A structure that reports which blob words its edits changed. take_dirty_ranges() is
@@ -108,6 +91,10 @@ public:
     using backend_type = Backend;
     using structure_type = Structure;
     using engine_type = typename Backend::template engine<typename Structure::kernel>;
+    static_assert(trace_engine<engine_type>,
+                  "tracer<Backend, Structure>: Backend::engine<Kernel> falls short of trace_engine "
+                  "(voxray/backend_contract.hpp): upload, update_ranges, trace, bytes_uploaded_last_update, "
+                  "bytes_uploaded_total, download_blob");
 
     explicit tracer(const Structure& structure, typename Backend::options options = {}) : engine_(options) {
         update(structure);
@@ -233,7 +220,7 @@ private:
     // The words of `ranges`; the whole blob when its size changed, unless it grew in place.
     void send_ranges(std::span<const std::uint32_t> blob, std::span<const word_range> ranges) {
         if (blob.size() == uploaded_words_) return engine_.update_ranges(blob, ranges);
-        if constexpr (grows_in_place<Structure> && requires { engine_.grow_ranges(blob, ranges); }) {
+        if constexpr (grows_in_place<Structure> && growing_engine<engine_type>) {
             if (blob.size() > uploaded_words_ && uploaded_words_ > 0) {
                 engine_.grow_ranges(blob, ranges);
                 uploaded_words_ = blob.size();

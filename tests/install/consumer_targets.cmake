@@ -7,6 +7,9 @@
 #                  kernel dialect is full of C casts, which those flags reject.
 #   cpu_opt_out    links voxray::cpu with VOXRAY_CPU_ARCH=none and VOXRAY_CPU_KEEP_FP_CONTRACT
 #                  (consume.cmake checks its compile command holds neither flag).
+#   linked_kernels the consumer's program with voxray::kernels linked (where the package has
+#                  it): its CPU streams come compiled from the library, and it must link
+#                  and trace as the header-only build does.
 #   forgot_vulkan  includes voxray/vulkan.hpp without linking voxray::vulkan: must not compile
 #                  (EXCLUDE_FROM_ALL; consume.cmake builds it and expects the message).
 # EXPECT_VERSION (the version voxray was configured with) is checked against voxray/version.hpp.
@@ -57,6 +60,13 @@ if(TARGET voxray::cpu)
     add_executable(cpu_opt_out ${src}/cpu_opt_out.cpp)
     target_link_libraries(cpu_opt_out PRIVATE voxray::voxray voxray::cpu)
     set_target_properties(cpu_opt_out PROPERTIES VOXRAY_CPU_ARCH none VOXRAY_CPU_KEEP_FP_CONTRACT ON)
+endif()
+
+if(TARGET voxray::kernels AND NOT VOXRAY_SOURCE_DIR)  # installed only: from source it would build the library again
+    add_executable(linked_kernels ${src}/main.cpp)
+    target_link_libraries(linked_kernels PRIVATE voxray::voxray ${backends} voxray::kernels)
+    target_compile_definitions(linked_kernels PRIVATE ${defines} EXPECT_VERSION="${EXPECT_VERSION}")
+    target_compile_options(linked_kernels PRIVATE ${strict})
 endif()
 
 add_executable(forgot_vulkan EXCLUDE_FROM_ALL ${src}/forgot_vulkan.cpp)

@@ -12,7 +12,7 @@
 
 #include "naadf_cells.hpp"
 #include "random_models.hpp"
-#include "voxray/brickmap/brickmap_edit.hpp"
+#include "voxray/brickmap/detail/edit.hpp"
 #include "voxray/check/random_edits.hpp"
 #include "voxray/cpu.hpp"
 #include "voxray/naadf/naadf.hpp"

@@ -58,7 +58,8 @@ void user_shader_matches_cpu(const Structure& s, const box3i& bounds) {
     reference.any_hit(rays, expected_any);
 
     std::string name = Structure::kernel::name;
-    vk::context ctx(vulkan_options{});
+    auto shared = vk::shared_context(vulkan_options{});
+    const vk::context& ctx = *shared;
     vk::command_stream commands(ctx);
     auto spirv = read_spirv(std::string(VOXRAY_USER_SPIRV_DIR) + "/user_" + name + ".spv");
     vk::compute_pipeline pipeline(ctx, spirv, sizeof(user_push));

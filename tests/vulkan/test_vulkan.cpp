@@ -8,7 +8,10 @@
 #include <cmath>
 #include <cstdlib>
 #include <cstring>
+#include <functional>
 #include <limits>
+#include <memory>
+#include <thread>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -20,6 +23,7 @@
 #include "voxray/check/ray_sets.hpp"
 #include "voxray/cpu.hpp"
 #include "voxray/dense_grid/dense_grid.hpp"
+#include "voxray/generated/structures.hpp"
 #include "voxray/vulkan.hpp"
 
 using namespace voxray;
@@ -149,9 +153,51 @@ TEST(vulkan, tracers_move) {
     EXPECT_EQ(h.voxel, glm::ivec3(6, 6, 0));
 }
 
+// Tracers of every registered structure share one VkDevice (and the process one
+// VkInstance); it is destroyed when the last of them goes. Their hits stay exact, also
+// when they trace at once from several threads (one queue, submitted under a lock).
+TEST(vulkan, tracers_of_every_structure_share_one_device) {
+    voxel_model model = test::random_model(24, 0.3f, 29);
+    auto rays = test::mixed_rays(model.bounds(), 2000, 3);
+    std::vector<hit> expected(rays.size());
+    tracer<cpu_scalar, dense_grid>(dense_grid(model)).closest_hit(rays, expected);
+    std::weak_ptr<vulkan_detail::context> shared;
+    {
+        std::vector<VkDevice> devices;
+        std::vector<std::function<void()>> traces;
+        std::vector<std::shared_ptr<void>> keep;
+        for_each_type(registered::structures{}, [&]<class S>() {
+            auto structure = std::make_shared<S>(model);
+            auto t = std::make_shared<tracer<vulkan, S>>(*structure);
+            devices.push_back(t->engine().device());
+            traces.push_back([t, &rays, &expected, name = std::string(S::name)] {
+                std::vector<hit> got(rays.size());
+                t->closest_hit(rays, got);
+                std::size_t differ = 0;
+                for (std::size_t i = 0; i < rays.size(); ++i) {
+                    if constexpr (requires { S::material_is_colour; }) got[i].material = expected[i].material;  // RGBA, not an index
+                    differ += compare_hits(rays[i], expected[i], got[i]) == agreement::mismatch;
+                }
+                EXPECT_EQ(differ, 0u) << name;
+            });
+            keep.push_back(structure);
+            keep.push_back(t);
+        });
+        ASSERT_GE(devices.size(), 5u);
+        for (VkDevice d : devices) EXPECT_EQ(d, devices.front()) << "a tracer made a VkDevice of its own";
+        shared = vulkan_detail::shared_context({});
+        EXPECT_EQ(shared.lock()->device(), devices.front());
+        std::vector<std::thread> threads;
+        for (auto& trace : traces) threads.emplace_back(trace);
+        for (auto& thread : threads) thread.join();
+    }
+    EXPECT_TRUE(shared.expired()) << "the device outlived its last tracer";
+}
+
 // A structure beyond the device's limits fails with the numbers, before any allocation.
 TEST(vulkan, oversized_buffer_is_a_clear_error) {
-    vulkan_detail::context ctx{vulkan_options{}};
+    auto shared = vulkan_detail::shared_context(vulkan_options{});
+    const vulkan_detail::context& ctx = *shared;
     VkDeviceSize huge = VkDeviceSize(1) << 50;
     try {
         vulkan_detail::buffer b(ctx, huge, vulkan_detail::buffer_role::storage_upload, true, "structure blob");

@@ -19,7 +19,7 @@
 #include "voxray/core/checksum.hpp"
 #include "voxray/svdag/builder.hpp"
 #include "voxray/svdag/validate.hpp"
-#include "voxray/world/chunk_build.hpp"
+#include "voxray/world/build/chunk_dag.hpp"
 #include "voxray/world/chunk_file.hpp"
 
 namespace voxray {

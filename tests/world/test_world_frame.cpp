@@ -1,4 +1,4 @@
-// The GPU-driven passes (world/frame.h) on every backend: per pixel, the visibility word
+// The GPU-driven passes (world/frame/passes.h) on every backend: per pixel, the visibility word
 // and the resolved attribute must be what the world's own trace finds for the same ray
 // (same voxel of the same chunk, face, depth key and attribute), frame after frame, with
 // the previous frame's Hi-Z culling tiles, a camera inside a chunk (the self chunk) and a
@@ -11,7 +11,7 @@
 
 #include "voxray/cpu.hpp"
 #include "voxray/tracer.hpp"
-#include "voxray/world/frame.hpp"
+#include "voxray/world/frame/frame.hpp"
 #include "world_test_model.hpp"
 #if VOXRAY_WITH_OPENCL
 #include "voxray/opencl.hpp"

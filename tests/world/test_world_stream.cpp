@@ -8,6 +8,8 @@
 
 #include <filesystem>
 #include <fstream>
+#include <functional>
+#include <memory>
 #include <set>
 #include <string>
 #include <unistd.h>
@@ -18,12 +20,13 @@
 #include "test_data.hpp"
 #include "voxray/check/compare.hpp"
 #include "voxray/cpu.hpp"
+#include "voxray/generated/backends.hpp"
 #include "voxray/io/mesh_loader.hpp"
 #include "voxray/tracer.hpp"
-#include "voxray/world/mesh_source.hpp"
-#include "voxray/world/model_source.hpp"
-#include "voxray/world/streamed_world.hpp"
-#include "voxray/world/world_build.hpp"
+#include "voxray/world/build/mesh_source.hpp"
+#include "voxray/world/build/model_source.hpp"
+#include "voxray/world/stream/streamed_world.hpp"
+#include "voxray/world/build/world_build.hpp"
 #include "world_test_model.hpp"
 #if VOXRAY_WITH_OPENCL
 #include "voxray/opencl.hpp"
@@ -260,6 +263,49 @@ TEST(world_stream, matches_the_in_memory_world_on_opencl) { streamed_matches_mem
 #if VOXRAY_WITH_VULKAN
 TEST(world_stream, matches_the_in_memory_world_on_vulkan) { streamed_matches_memory<vulkan>("vulkan"); }
 #endif
+
+// Several tracers on one streamed world, one per backend, each refreshed with
+// update(world) after every frame: each must hold the world's current blob and trace what
+// a tracer made from scratch sees. (Handing the changed words to whichever tracer asked
+// first left the others with a new directory over an old DAG pool.)
+TEST(world_stream, every_tracer_of_one_world_stays_exact) {
+    voxel_model model = world_test_model();
+    temp_dir dir;
+    build_world(model_source(model), dir.path, small_chunks());
+    residency_options ro;
+    ro.streaming_factor = 1.5;
+    ro.budget_bytes = 1 << 30;
+    streamed_world world(dir.path, ro);
+    auto rays = mixed_rays(model.bounds(), 3000, 23);
+    std::vector<hit> expected(rays.size());
+    // One tracer per linked backend; each frame: update, check the blob it holds, trace.
+    std::vector<std::function<void(int)>> frames;
+    for_each_type(registered::backends{}, [&]<class B>() {
+        auto t = std::make_shared<tracer<B, streamed_world>>(world);
+        frames.push_back([t, &world, &rays, &expected](int frame) {
+            t->update(world);
+            auto held = t->engine().download_blob();
+            auto blob = world.blob();
+            // A stale blob is reported here, before any ray walks it.
+            ASSERT_TRUE(held.size() >= blob.size() && std::equal(blob.begin(), blob.end(), held.begin()))
+                << B::name << ", frame " << frame << ": the tracer holds another blob than the world";
+            std::vector<hit> got(rays.size());
+            t->closest_hit(rays, got);
+            std::size_t differ = 0;
+            for (std::size_t i = 0; i < rays.size(); ++i) differ += !same_bits(got[i], expected[i]);
+            EXPECT_EQ(differ, 0u) << B::name << ", frame " << frame;
+        });
+    });
+    ASSERT_GE(frames.size(), 2u);
+    box3i b = model.bounds();
+    for (int frame = 0; frame < 6; ++frame) {
+        glm::dvec3 camera = glm::dvec3(b.min) + glm::dvec3(b.extent()) * glm::dvec3(0.1 + 0.18 * frame, 0.5, 1.2);
+        world.update(camera, true);
+        tracer<cpu_scalar, streamed_world>(world, cpu_options{1}).closest_hit(rays, expected);  // from scratch
+        for (auto& f : frames) f(frame);
+    }
+    EXPECT_GT(world.residency().stats().evictions, 0u);
+}
 
 TEST(world_stream, the_budget_holds_and_the_coarse_lods_come_first) {
     voxel_model model = world_test_model();

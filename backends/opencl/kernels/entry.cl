@@ -18,7 +18,7 @@
     VX_OPENCL_ENTRY_MODE(name, vx_any_, VX_MODE_ANY)
 
 /* A structure's frame passes (voxray_add_structure ... PASSES; the world's are
- * world/frame.h), looked up as vx_pass_<name>: one work-item per item of `pass`. */
+ * world/frame/passes.h), looked up as vx_pass_<name>: one work-item per item of `pass`. */
 #define VX_OPENCL_PASS_ENTRY(name)                                                            \
     __kernel void vx_pass_##name(__global const uint* blob, __global uint* frame, uint pass,  \
                                  uint count) {                                                \

@@ -1,5 +1,5 @@
 /* voxray: one structure's traversal for your own OpenCL C 1.2 kernels. Generated from the
- * portable kernels that voxray's own backends compile (scripts/cmake/voxray_kernels.cmake):
+ * portable kernels that voxray's own backends compile (cmake/voxray_kernels.cmake):
  * do not edit.
  *
  * Put its text in front of your kernel source (or #include it with -I<voxray prefix>/include):

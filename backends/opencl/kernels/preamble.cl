@@ -1,5 +1,5 @@
 /* voxray OpenCL backend: the text placed before the portable kernel files when they are
- * flattened into one OpenCL C 1.2 program (scripts/cmake/voxray_kernels.cmake).
+ * flattened into one OpenCL C 1.2 program (cmake/voxray_kernels.cmake).
  * The kernels pick their dialect from this macro (kernels/prelude.h), so it must come
  * first. Program build options (opencl/program_cache.hpp) add -cl-std=CL1.2 and
  * -cl-fp32-correctly-rounded-divide-sqrt: 1/d then rounds exactly like C++, which keeps

@@ -6,7 +6,7 @@
 #extension GL_EXT_buffer_reference : require
 #extension GL_EXT_buffer_reference_uvec2 : require
 #define VX_DIALECT_GLSL 1
-// The frame passes (world/frame.h) pack their visibility buffer into 64-bit words and keep
+// The frame passes (world/frame/passes.h) pack their visibility buffer into 64-bit words and keep
 // the nearest hit by atomicMax: only their shader asks for int64 (shaderInt64 and
 // shaderBufferInt64Atomics, which the engine checks before it builds that pipeline).
 #ifdef VX_INT64_ATOMICS

@@ -1,10 +1,15 @@
 // Compute entry point shared by every structure: one invocation per ray. The structure's
-// trace function and the trace mode come from the compiler command line
-// (-DVX_TRACE=vx_<name>_trace -DVX_MODE=VX_MODE_ANY, see backends/vulkan/backend.cmake), so
-// this one file serves them all, and each module has its mode as a constant.
-#if !defined(VX_TRACE) || !defined(VX_MODE)
-#error "VX_TRACE must name the structure's trace function and VX_MODE its mode, e.g. -DVX_TRACE=vx_dense_grid_trace -DVX_MODE=VX_MODE_CLOSEST"
+// trace function comes from the compiler command line (-DVX_TRACE=vx_<name>_trace, see
+// backends/vulkan/backend.cmake), so this one file serves them all. The trace mode is a
+// specialization constant: one module per structure, and the driver folds the mode into
+// each of its two pipelines (voxray/vulkan/pipeline.hpp), so any-hit still compiles to
+// its own code.
+#if !defined(VX_TRACE)
+#error "VX_TRACE must name the structure's trace function, e.g. -DVX_TRACE=vx_dense_grid_trace"
 #endif
+
+// Must match voxray::vulkan_detail::trace_mode_constant_id (voxray/vulkan/pipeline.hpp).
+layout(constant_id = 0) const uint vx_trace_mode = VX_MODE_CLOSEST;
 
 // 64 invocations a group: a multiple of every common subgroup size (8 on lavapipe, 32 on
 // NVIDIA, 64 on AMD). The host side (voxray/vulkan/pipeline.hpp) uses the same number.
@@ -31,5 +36,5 @@ void main() {
     vx_words blob = vx_words(pc.blob);
     vx_ray_buffer rays = vx_ray_buffer(pc.rays);
     vx_hit_buffer hits = vx_hit_buffer(pc.hits);
-    hits.h[i] = VX_TRACE(blob, rays.r[i], VX_MODE);
+    hits.h[i] = VX_TRACE(blob, rays.r[i], vx_trace_mode);
 }

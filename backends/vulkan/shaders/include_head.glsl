@@ -1,5 +1,5 @@
 // voxray: one structure's traversal for your own GLSL shaders. Generated from the portable
-// kernels that voxray's own backends compile (scripts/cmake/voxray_kernels.cmake): do not edit.
+// kernels that voxray's own backends compile (cmake/voxray_kernels.cmake): do not edit.
 //
 // Include it right after #version 450 (and your own #extension lines), before any declaration:
 //

@@ -1,5 +1,5 @@
 // Compute entry point of a structure's frame passes (voxray_add_structure ... PASSES; the
-// world's are world/frame.h): one invocation per item of the pass in the push constants.
+// world's are world/frame/passes.h): one invocation per item of the pass in the push constants.
 // VX_PASS names the structure's pass function (-DVX_PASS=vx_<name>_pass, backend.cmake).
 #if !defined(VX_PASS)
 #error "VX_PASS must name the structure's pass function, e.g. -DVX_PASS=vx_world_pass"
@@ -13,7 +13,7 @@ layout(local_size_x = 64, local_size_y = 1, local_size_z = 1) in;
 // one dispatch holds runs as several, each starting at `first`.
 layout(push_constant, std430) uniform vx_pass_push {
     uvec2 blob;   // structure words
-    uvec2 frame;  // frame words (world/frame_layout.h), read and written
+    uvec2 frame;  // frame words (world/frame/layout.h), read and written
     uint first;   // item of this dispatch's invocation 0
     uint count;   // items in this dispatch
     uint pass;    // which pass

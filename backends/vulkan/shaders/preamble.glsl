@@ -1,5 +1,5 @@
 #version 450
-// Put in front of the flattened portable kernels (scripts/cmake/voxray_kernels.cmake) to
+// Put in front of the flattened portable kernels (cmake/voxray_kernels.cmake) to
 // make one GLSL compute shader per structure; backends/vulkan/shaders/entry.glsl follows
 // them. Everything is reached by buffer device address, so no descriptor (and no
 // maxStorageBufferRange, 128 MiB on lavapipe) limits the size of a structure.

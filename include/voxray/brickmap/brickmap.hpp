@@ -74,7 +74,7 @@ public:
     using payload_type = Payload;
     static constexpr int brick_edge = BrickEdge;
     static constexpr std::string_view name = "brickmap";
-    // The pool's doubling appends bricks and marks only the header (brickmap_capacity.hpp),
+    // The pool's doubling appends bricks and marks only the header (detail/capacity.hpp),
     // so tracers keep the old words on the device (tracer.hpp, grows_in_place).
     static constexpr bool growth_keeps_prefix = true;
     using kernel = kernels::brickmap_kernel;
@@ -351,7 +351,7 @@ private:
             grow(st, seen);
         }
     }
-    // Capacity and world growth (brickmap_capacity.hpp); all but make_room run with the
+    // Capacity and world growth (detail/capacity.hpp); all but make_room run with the
     // exclusive lock held or take it.
     void fit_locked(double headroom);
     void resize_brick_state();
@@ -425,5 +425,5 @@ private:
 
 }  // namespace voxray
 
-#include "voxray/brickmap/brickmap_capacity.hpp"
-#include "voxray/brickmap/brickmap_edit.hpp"
+#include "voxray/brickmap/detail/capacity.hpp"
+#include "voxray/brickmap/detail/edit.hpp"

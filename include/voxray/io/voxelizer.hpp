@@ -58,7 +58,7 @@ struct voxel_grid_map {
 };
 
 // `max_resolution`: a whole model in memory stops at 4096; a world built chunk by chunk
-// (world/mesh_source.hpp) goes further.
+// (world/build/mesh_source.hpp) goes further.
 inline voxel_grid_map make_grid_map(const mesh_bounds& b, int resolution, int max_resolution = max_voxelize_resolution) {
     if (resolution < 1 || resolution > max_resolution)
         fail("voxelization resolution ", resolution, " is outside the supported range 1..", max_resolution);

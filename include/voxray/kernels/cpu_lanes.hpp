@@ -62,7 +62,7 @@ inline void vx_select_state_into(bool m, const State& a, State& into) {
 #include "voxray/kernels/bits.h"
 #include "voxray/svdag/walk.h"
 
-// Frame words (world/frame.h, scalar lanes only): one item per call, threads share the
+// Frame words (world/frame/passes.h, scalar lanes only): one item per call, threads share the
 // frame, so counters and the visibility buffer use the same atomics as the GPUs.
 typedef std::uint64_t __attribute__((may_alias)) vx_frame_u64;
 inline float vx_bits_f(std::uint32_t x) { return std::bit_cast<float>(x); }

@@ -59,7 +59,7 @@ typedef bool vx_mask;
 #define vx_bits_f(x) as_float(x)
 #define vx_floor(x) floor(x)
 #define vx_any(m) (m)
-/* Frame words (read-write, one item per work-item; world/frame.h), and their atomics. */
+/* Frame words (read-write, one item per work-item; world/frame/passes.h), and their atomics. */
 #define VX_FRAME __global uint*
 #define VX_PRECISE
 #define vx_frame_load(f, i) ((f)[(i)])
@@ -108,7 +108,7 @@ static inline float vx_fmax(float a, float b) { return a > b ? a : b; }
 #define vx_bits_f(x) uintBitsToFloat(x)
 #define vx_floor(x) floor(x)
 #define vx_any(m) (m)
-/* Frame words by address (world/frame.h); the 64-bit view needs VX_INT64_ATOMICS
+/* Frame words by address (world/frame/passes.h); the 64-bit view needs VX_INT64_ATOMICS
  * (backends/vulkan/shaders/dialect.glsl). `precise` keeps a*b+c two roundings, as in C++. */
 #define VX_FRAME uvec2
 #define VX_PRECISE precise

@@ -1,6 +1,6 @@
 // What an edit does to one NAADF chunk decoded to 16^3 types (voxel_model::chunk): region
 // writes in whole x runs, which blocks ended up different, and how many voxels are solid.
-// naadf_edit.hpp runs these on many chunks at once.
+// detail/edit.hpp runs these on many chunks at once.
 #pragma once
 #include <algorithm>
 #include <bit>

@@ -5,10 +5,10 @@
 // table of pages, so a sparse 16384^3 world costs megabytes.
 //
 // Editable with the brickmap's vocabulary (set, regions, batches, lines, copies; fill,
-// erase, paint), from any thread. Edits work chunk by chunk (naadf/naadf_edit.hpp): an
+// erase, paint), from any thread. Edits work chunk by chunk (naadf/detail/edit.hpp): an
 // edited chunk is decoded, changed, and rebuilt with its block and voxel fields, its
 // groups re-interned (unused ones freed for reuse); chunk and page fields that an edit
-// breaks are reset to 0 at once (naadf/field_upkeep.hpp) and grown back by refine().
+// breaks are reset to 0 at once (naadf/field_repair.hpp) and grown back by refine().
 //
 // Threads: edits, refine() and the sync calls take the structure's lock exclusively
 // (one edit at a time, each spread over `threads` worker threads); get() and the
@@ -35,7 +35,7 @@
 #include "voxray/model/voxel_model.hpp"
 #include "voxray/naadf/builder.hpp"
 #include "voxray/naadf/cell_store.hpp"
-#include "voxray/naadf/field_upkeep.hpp"
+#include "voxray/naadf/field_repair.hpp"
 #include "voxray/sync/change_log.hpp"
 #include "voxray/sync/sync_frame.hpp"
 
@@ -169,7 +169,7 @@ private:
     naadf(naadf_detail::cell_store store, naadf_detail::group_table groups, box3i bounds, std::uint64_t voxels,
           voxray::palette palette);
 
-    // Chunk edits (naadf_edit.hpp).
+    // Chunk edits (detail/edit.hpp).
     template <class ChunkEdit>
     void edit_chunks(const std::vector<glm::ivec3>& chunks, unsigned threads, ChunkEdit&& chunk_edit);
     void rebuild(edited_chunk& c, const voxel_model::chunk& v, std::uint64_t blocks, naadf_detail::field_cache& cache) const;
@@ -237,5 +237,5 @@ private:
 
 }  // namespace voxray
 
-#include "voxray/naadf/naadf_edit.hpp"
-#include "voxray/naadf/naadf_upkeep.hpp"
+#include "voxray/naadf/detail/edit.hpp"
+#include "voxray/naadf/detail/upkeep.hpp"

@@ -15,7 +15,7 @@
 #include "voxray/core/box.hpp"
 #include "voxray/core/error.hpp"
 #include "voxray/naadf/builder.hpp"
-#include "voxray/naadf/field_upkeep.hpp"
+#include "voxray/naadf/field_repair.hpp"
 #include "voxray/naadf/group_table.hpp"
 #include "voxray/naadf/layout.h"
 

@@ -15,7 +15,7 @@
 
 #include "voxray/core/error.hpp"
 #include "voxray/model/voxel_model.hpp"
-#include "voxray/scenes/chunk_builder.hpp"
+#include "voxray/scenes/parallel_fill.hpp"
 
 namespace voxray::scenes {
 

@@ -23,7 +23,7 @@
 #include "voxray/core/error.hpp"
 #include "voxray/model/build_threads.hpp"
 #include "voxray/model/voxel_model.hpp"
-#include "voxray/scenes/chunk_builder.hpp"
+#include "voxray/scenes/parallel_fill.hpp"
 #include "voxray/scenes/noise.hpp"
 
 namespace voxray::scenes {

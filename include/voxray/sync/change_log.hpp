@@ -30,9 +30,15 @@ public:
     // Moves the dirty set into the log as a new generation (nothing when it is empty).
     void commit(dirty_set& dirty, std::uint32_t blob_words, std::uint32_t bricks_offset, std::uint32_t brick_words) {
         if (dirty.empty()) return;
-        ++generation_;
         bool whole = dirty.whole();
-        std::vector<word_range> ranges = dirty.take(blob_words, bricks_offset, brick_words);
+        commit(dirty.take(blob_words, bricks_offset, brick_words), whole, blob_words);
+    }
+
+    // The same for a structure that collects its own ranges: `whole` when the blob was
+    // re-laid out (then the ranges are not kept). Nothing when there is nothing to log.
+    void commit(const std::vector<word_range>& ranges, bool whole, std::uint32_t blob_words) {
+        if (ranges.empty() && !whole) return;
+        ++generation_;
         if (whole) {
             entries_.clear();
             logged_words_ = 0;

@@ -29,7 +29,7 @@ VX_STRUCT(vx_wd_state)
     vx_sv_state walk;
     vx_u32 region;        /* level of the directory region the lane's chunk stands for */
     vx_u32 only;          /* 0, or the one entry (child word) the walk enters: the frame
-                             passes march a ray through one chunk (world/frame.h), and
+                             passes march a ray through one chunk (world/frame/passes.h), and
                              leave every other entry's region as if it were empty */
 VX_END_STRUCT(vx_wd_state)
 

@@ -17,7 +17,7 @@
  *  | cells, its leaves the entries |
  *  +-------------------------------+ header.table
  *  | chunk table: one row of 8     |  the entries as a flat list, with their boxes, for
- *  | words per entry               |  the frame passes (world/frame.h)
+ *  | words per entry               |  the frame passes (world/frame/passes.h)
  *  +-------------------------------+
  *  | chunk DAGs (svdag/layout.h)   |  each a whole svdag blob, header included, whose
  *  |                               |  pointers are relative to its own header: a chunk's

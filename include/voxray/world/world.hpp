@@ -21,7 +21,7 @@
 #include "voxray/core/box.hpp"
 #include "voxray/model/build_threads.hpp"
 #include "voxray/model/voxel_model.hpp"
-#include "voxray/world/chunk_build.hpp"
+#include "voxray/world/build/chunk_dag.hpp"
 #include "voxray/world/chunk_voxels.hpp"
 #include "voxray/world/lod.hpp"
 #include "voxray/world/world_blob.hpp"

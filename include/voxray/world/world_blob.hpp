@@ -110,7 +110,7 @@ struct directory {
 }  // namespace world_pack
 
 // The header and directory words of a cut, for DAGs placed wherever the caller puts
-// them (after the directory in one blob, pack_world; or in a pool, world/streamed_world.hpp).
+// them (after the directory in one blob, pack_world; or in a pool, world/stream/streamed_world.hpp).
 // `cut` is applied coarse to fine, so a finer chunk stands for its cells where a coarser
 // one covers them too (a chunk not resident is traced at the finest resident LOD above it,
 // when the caller passes the resident ones). Cells no placement covers have no voxels.

@@ -76,6 +76,26 @@ namespace kernels::simd16 {
 }  // namespace kernels::simd16
 VOXRAY_AVX512_END
 
+namespace kernels::scalar {
+// The scalar kernel over a batch, one ray after another (the cpu-scalar backend, and
+// voxray::cpu on a CPU without AVX2).
+template <class Kernel, std::uint32_t Mode>
+void trace_stream(const std::uint32_t* blob, const voxray::ray* rays, voxray::hit* hits, std::size_t count) {
+    using K = kernel_lanes<Kernel>;
+    for (std::size_t i = 0; i < count; ++i) hits[i] = cpu_detail::from_lane(K::template trace<Mode>(blob, cpu_detail::to_lane(rays[i])));
+}
+}  // namespace kernels::scalar
+
+// The streams of one structure kernel in one lane set (scalar, simd8, simd16), both
+// trace modes: what the compiled voxray::kernels library instantiates once, one source
+// file per kernel and lane set, and what its users then declare `extern` instead of
+// compiling again (PREFIX: `extern` or nothing; see voxray/cpu/kernel_instances.hpp).
+#define VOXRAY_CPU_STREAM_INSTANCES(PREFIX, LANES, KERNEL)                                                   \
+    PREFIX template void voxray::kernels::LANES::trace_stream<KERNEL, VX_MODE_CLOSEST>(                      \
+        const std::uint32_t*, const voxray::ray*, voxray::hit*, std::size_t);                                \
+    PREFIX template void voxray::kernels::LANES::trace_stream<KERNEL, VX_MODE_ANY>(                          \
+        const std::uint32_t*, const voxray::ray*, voxray::hit*, std::size_t);
+
 namespace cpu_detail {
 
 template <bool Simd, class Kernel>
@@ -129,7 +149,7 @@ public:
     // For tests and diagnostics, like the GPU engines': a copy of the blob traced.
     std::vector<std::uint32_t> download_blob() const { return {view_.begin(), view_.end()}; }
 
-    // The words traced, for passes that run beside the trace (world/frame.hpp).
+    // The words traced, for passes that run beside the trace (world/frame/frame.hpp).
     std::span<const std::uint32_t> blob_view() const { return view_; }
 
     // The workers this engine runs on (shared with other tracers when cpu_options::pool was given).
@@ -171,14 +191,14 @@ private:
         std::size_t batches = (rays.size() + batch_rays - 1) / batch_rays;
         auto batch = [&](std::size_t b) {
             std::size_t begin = b * batch_rays, end = std::min(rays.size(), begin + batch_rays);
-            if (width_ == 16) {
-                kernels::simd16::trace_stream<Kernel, Mode>(blob, &rays[begin], &hits[begin], end - begin);
-            } else if (width_ == 8) {
-                kernels::simd8::trace_stream<Kernel, Mode>(blob, &rays[begin], &hits[begin], end - begin);
-            } else {
-                using K = kernels::scalar::kernel_lanes<Kernel>;
-                for (std::size_t i = begin; i < end; ++i) hits[i] = from_lane(K::template trace<Mode>(blob, to_lane(rays[i])));
+            // cpu-scalar compiles only the scalar stream: the SIMD ones exist in voxray::cpu alone.
+            if constexpr (Simd) {
+                if (width_ == 16)
+                    return kernels::simd16::trace_stream<Kernel, Mode>(blob, &rays[begin], &hits[begin], end - begin);
+                if (width_ == 8)
+                    return kernels::simd8::trace_stream<Kernel, Mode>(blob, &rays[begin], &hits[begin], end - begin);
             }
+            kernels::scalar::trace_stream<Kernel, Mode>(blob, &rays[begin], &hits[begin], end - begin);
         };
         // A single batch runs on the calling thread: waking the pool would cost more than it saves.
         if (batches == 1) batch(0);
@@ -212,3 +232,9 @@ using cpu = cpu_backend<true>;
 using cpu_scalar = cpu_backend<false>;
 
 }  // namespace voxray
+
+// Linked with voxray::kernels: the streams of every registered structure are compiled
+// there once, so this translation unit only declares them.
+#if defined(VOXRAY_CPU_KERNELS_LINKED)
+#include "voxray/generated/cpu_kernel_instances.hpp"
+#endif

@@ -180,7 +180,7 @@ public:
         if (count > 0) enqueue_trace(rays, hits, cl_uint(count), mode);
     }
 
-    // Frame passes (structures registered with PASSES; world/frame.hpp drives them): a
+    // Frame passes (structures registered with PASSES; world/frame/frame.hpp drives them): a
     // frame buffer of words (grow-only; growing drops its contents), host access to it,
     // and one pass run to completion. The kernel is vx_pass_<name> in the structure's program.
     void frame_reserve(std::size_t words) {
@@ -209,7 +209,7 @@ public:
         if (count > std::numeric_limits<cl_uint>::max() - local_size_)
             fail("OpenCL: ", count, " items in one frame pass, more than its 32-bit count allows");
         if (!pass_) {
-            // The visibility buffer's nearest hit is a 64-bit atomic max (world/frame.h).
+            // The visibility buffer's nearest hit is a 64-bit atomic max (world/frame/passes.h).
             if (device_string(ctx_->device(), CL_DEVICE_EXTENSIONS).find("cl_khr_int64_extended_atomics") == std::string::npos)
                 fail("OpenCL: the frame passes need cl_khr_int64_extended_atomics, which ", ctx_->device_name(),
                      " does not offer");

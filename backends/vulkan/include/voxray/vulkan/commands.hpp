@@ -2,6 +2,7 @@
 // The engine is synchronous (trace returns with the hits), so one of each is enough.
 #pragma once
 #include <cstdint>
+#include <mutex>
 
 #include <vulkan/vulkan.h>
 
@@ -12,7 +13,7 @@ namespace voxray::vulkan_detail {
 
 class command_stream {
 public:
-    explicit command_stream(const context& ctx) : device_(ctx.device()), queue_(ctx.queue()) {
+    explicit command_stream(const context& ctx) : device_(ctx.device()), queue_(ctx.queue()), queue_lock_(&ctx.queue_lock()) {
         try {
             auto pool = vk_struct<VkCommandPoolCreateInfo>(VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO);
             pool.flags = VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT;
@@ -50,7 +51,10 @@ public:
         submit.commandBufferCount = 1;
         submit.pCommandBuffers = &commands_;
         vk_check(vkResetFences(device_, 1, &fence_), "vkResetFences");
-        vk_check(vkQueueSubmit(queue_, 1, &submit, fence_), "vkQueueSubmit");
+        {
+            std::lock_guard guard(*queue_lock_);  // other tracers on this device share the queue
+            vk_check(vkQueueSubmit(queue_, 1, &submit, fence_), "vkQueueSubmit");
+        }
         // No timeout: a long trace on a slow (CPU) device is legitimate, and a lost
         // device returns VK_ERROR_DEVICE_LOST rather than hanging.
         vk_check(vkWaitForFences(device_, 1, &fence_, VK_TRUE, UINT64_MAX), "vkWaitForFences");
@@ -75,6 +79,7 @@ private:
 
     VkDevice device_;
     VkQueue queue_;
+    std::mutex* queue_lock_;
     VkCommandPool pool_ = VK_NULL_HANDLE;
     VkCommandBuffer commands_ = VK_NULL_HANDLE;
     VkFence fence_ = VK_NULL_HANDLE;

@@ -1,6 +1,9 @@
 // The Vulkan instance, the chosen physical device, its logical device and one compute
 // queue. Everything else in the backend borrows these handles from one `context`, which
 // either creates them or takes the application's (vulkan_options::user_device).
+// Tracers share contexts (shared_context below): one VkInstance per process and one
+// VkDevice per physical device, however many structures are traced, destroyed when the
+// last tracer using them goes.
 //
 // Needs Vulkan 1.2 for buffer device addresses: the shaders reach structure, rays and
 // hits through 64-bit addresses in push constants, so no descriptor and therefore no
@@ -10,6 +13,8 @@
 #include <cstdint>
 #include <cstdlib>
 #include <cstring>
+#include <memory>
+#include <mutex>
 #include <string>
 #include <vector>
 
@@ -91,22 +96,114 @@ inline candidate inspect(VkPhysicalDevice pd) {
     return c;
 }
 
+// The process's VkInstance, shared by every context voxray creates.
+class instance {
+public:
+    instance() { create(); }
+    ~instance() { vkDestroyInstance(handle_, nullptr); }
+    instance(const instance&) = delete;
+    instance& operator=(const instance&) = delete;
+    VkInstance handle() const { return handle_; }
+
+private:
+    void create() {
+        // vkEnumerateInstanceVersion is missing from 1.0 loaders, which cannot do 1.2 anyway.
+        auto enumerate_version = reinterpret_cast<PFN_vkEnumerateInstanceVersion>(
+            vkGetInstanceProcAddr(nullptr, "vkEnumerateInstanceVersion"));
+        std::uint32_t loader = VK_API_VERSION_1_0;
+        if (enumerate_version) vk_check(enumerate_version(&loader), "vkEnumerateInstanceVersion");
+        if (loader < required_api)
+            fail("vulkan: the Vulkan loader supports API ", version_string(loader), ", voxray needs 1.2");
+        std::uint32_t n = 0;
+        vk_check(vkEnumerateInstanceExtensionProperties(nullptr, &n, nullptr),
+                 "vkEnumerateInstanceExtensionProperties");
+        std::vector<VkExtensionProperties> available(n);
+        vk_check(vkEnumerateInstanceExtensionProperties(nullptr, &n, available.data()),
+                 "vkEnumerateInstanceExtensionProperties");
+        available.resize(n);
+        auto app = vk_struct<VkApplicationInfo>(VK_STRUCTURE_TYPE_APPLICATION_INFO);
+        app.pApplicationName = "voxray";
+        app.pEngineName = "voxray";
+        app.apiVersion = required_api;
+        auto info = vk_struct<VkInstanceCreateInfo>(VK_STRUCTURE_TYPE_INSTANCE_CREATE_INFO);
+        info.pApplicationInfo = &app;
+#ifdef VK_KHR_portability_enumeration
+        // Lists portability drivers (MoltenVK) too; without it they are hidden.
+        const char* portability = VK_KHR_PORTABILITY_ENUMERATION_EXTENSION_NAME;
+        if (has_extension(available, portability)) {
+            info.flags |= VK_INSTANCE_CREATE_ENUMERATE_PORTABILITY_BIT_KHR;
+            info.enabledExtensionCount = 1;
+            info.ppEnabledExtensionNames = &portability;
+        }
+#endif
+        VkResult r = vkCreateInstance(&info, nullptr, &handle_);
+        // The loader's answer when it finds no driver (ICD) at all.
+        if (r == VK_ERROR_INCOMPATIBLE_DRIVER)
+            fail("vulkan: vkCreateInstance failed: VK_ERROR_INCOMPATIBLE_DRIVER: no Vulkan 1.2 driver found; "
+                 "install one (for a CPU device, Mesa's lavapipe: Debian package mesa-vulkan-drivers)");
+        vk_check(r, "vkCreateInstance");
+    }
+
+    VkInstance handle_ = VK_NULL_HANDLE;
+};
+
+// The physical device the options ask for (vulkan_options::device, else the environment
+// variable VOXRAY_VULKAN_DEVICE), else the best usable one: a GPU before a CPU device.
+inline candidate choose_device(VkInstance inst, const vulkan_options& options) {
+    std::uint32_t n = 0;
+    vk_check(vkEnumeratePhysicalDevices(inst, &n, nullptr), "vkEnumeratePhysicalDevices");
+    std::vector<VkPhysicalDevice> devices(n);
+    vk_check(vkEnumeratePhysicalDevices(inst, &n, devices.data()), "vkEnumeratePhysicalDevices");
+    devices.resize(n);
+    if (devices.empty())
+        fail("vulkan: no Vulkan device found: install a driver (for a CPU device, Mesa's lavapipe: "
+             "Debian package mesa-vulkan-drivers)");
+
+    std::string wanted = options.device, source = "vulkan_options::device";
+    if (wanted.empty()) {
+        if (const char* env = std::getenv("VOXRAY_VULKAN_DEVICE"); env && *env) {
+            wanted = env;
+            source = "VOXRAY_VULKAN_DEVICE";
+        }
+    }
+    std::vector<candidate> all;
+    for (VkPhysicalDevice pd : devices) all.push_back(inspect(pd));
+
+    const candidate* best = nullptr;
+    std::string seen;
+    for (const candidate& c : all) {
+        std::string name = c.properties.deviceName;
+        seen += "\n  " + name + (c.problem.empty() ? "" : " (" + c.problem + ")");
+        if (!wanted.empty() && name.find(wanted) == std::string::npos) continue;
+        if (!c.problem.empty()) continue;
+        if (!best || type_rank(c.properties.deviceType) < type_rank(best->properties.deviceType)) best = &c;
+    }
+    if (!best) {
+        if (!wanted.empty())
+            fail("vulkan: no usable device whose name contains \"", wanted, "\" (from ", source,
+                 "); devices:", seen);
+        fail("vulkan: no usable device (voxray needs Vulkan 1.2 with bufferDeviceAddress and a compute queue); "
+             "devices:", seen);
+    }
+    return *best;
+}
+
 class context {
 public:
-    explicit context(const vulkan_options& options) {
-        if (options.user_device) {
-            borrow(*options.user_device);
-            return;
-        }
+    // A device of its own on `chosen`, a physical device of `inst` (shared_context()
+    // shares them).
+    context(std::shared_ptr<const instance> inst, const candidate& chosen) : instance_(std::move(inst)), chosen_(chosen) {
         try {
-            create_instance();
-            choose_device(options);
+            vkGetPhysicalDeviceMemoryProperties(chosen_.handle, &memory_);
+            read_limits();
             create_device();
         } catch (...) {
             destroy();
             throw;
         }
     }
+    // The application's device (vulkan_options::user_device).
+    explicit context(const vulkan_user_device& user) { borrow(user); }
     ~context() { destroy(); }
     context(const context&) = delete;
     context& operator=(const context&) = delete;
@@ -128,6 +225,9 @@ public:
     // on a device voxray creates, wherever the device has them; never assumed of the
     // application's device, whose enabled features voxray cannot see.
     bool int64_atomics() const { return owns_ && chosen_.int64_atomics; }
+    // Held around every vkQueueSubmit: the tracers sharing this context share its queue,
+    // which Vulkan requires to be externally synchronized.
+    std::mutex& queue_lock() const { return queue_lock_; }
 
 private:
     // The application's handles: checked, then used as they are, never destroyed.
@@ -154,91 +254,9 @@ private:
             fail("vulkan: queue family ", user.queue_family, " of ", chosen_.properties.deviceName,
                  " does not support compute");
         owns_ = false;
-        instance_ = user.instance;
         device_ = user.device;
         queue_ = user.queue;
         chosen_.queue_family = user.queue_family;
-        vkGetPhysicalDeviceMemoryProperties(chosen_.handle, &memory_);
-        read_limits();
-    }
-
-    void create_instance() {
-        // vkEnumerateInstanceVersion is missing from 1.0 loaders, which cannot do 1.2 anyway.
-        auto enumerate_version = reinterpret_cast<PFN_vkEnumerateInstanceVersion>(
-            vkGetInstanceProcAddr(nullptr, "vkEnumerateInstanceVersion"));
-        std::uint32_t loader = VK_API_VERSION_1_0;
-        if (enumerate_version) vk_check(enumerate_version(&loader), "vkEnumerateInstanceVersion");
-        if (loader < required_api)
-            fail("vulkan: the Vulkan loader supports API ", version_string(loader), ", voxray needs 1.2");
-
-        std::uint32_t n = 0;
-        vk_check(vkEnumerateInstanceExtensionProperties(nullptr, &n, nullptr),
-                 "vkEnumerateInstanceExtensionProperties");
-        std::vector<VkExtensionProperties> available(n);
-        vk_check(vkEnumerateInstanceExtensionProperties(nullptr, &n, available.data()),
-                 "vkEnumerateInstanceExtensionProperties");
-        available.resize(n);
-
-        auto app = vk_struct<VkApplicationInfo>(VK_STRUCTURE_TYPE_APPLICATION_INFO);
-        app.pApplicationName = "voxray";
-        app.pEngineName = "voxray";
-        app.apiVersion = required_api;
-        auto info = vk_struct<VkInstanceCreateInfo>(VK_STRUCTURE_TYPE_INSTANCE_CREATE_INFO);
-        info.pApplicationInfo = &app;
-#ifdef VK_KHR_portability_enumeration
-        // Lists portability drivers (MoltenVK) too; without it they are hidden.
-        const char* portability = VK_KHR_PORTABILITY_ENUMERATION_EXTENSION_NAME;
-        if (has_extension(available, portability)) {
-            info.flags |= VK_INSTANCE_CREATE_ENUMERATE_PORTABILITY_BIT_KHR;
-            info.enabledExtensionCount = 1;
-            info.ppEnabledExtensionNames = &portability;
-        }
-#endif
-        VkResult r = vkCreateInstance(&info, nullptr, &instance_);
-        // The loader's answer when it finds no driver (ICD) at all.
-        if (r == VK_ERROR_INCOMPATIBLE_DRIVER)
-            fail("vulkan: vkCreateInstance failed: VK_ERROR_INCOMPATIBLE_DRIVER: no Vulkan 1.2 driver found; "
-                 "install one (for a CPU device, Mesa's lavapipe: Debian package mesa-vulkan-drivers)");
-        vk_check(r, "vkCreateInstance");
-    }
-
-    void choose_device(const vulkan_options& options) {
-        std::uint32_t n = 0;
-        vk_check(vkEnumeratePhysicalDevices(instance_, &n, nullptr), "vkEnumeratePhysicalDevices");
-        std::vector<VkPhysicalDevice> devices(n);
-        vk_check(vkEnumeratePhysicalDevices(instance_, &n, devices.data()), "vkEnumeratePhysicalDevices");
-        devices.resize(n);
-        if (devices.empty())
-            fail("vulkan: no Vulkan device found: install a driver (for a CPU device, Mesa's lavapipe: "
-                 "Debian package mesa-vulkan-drivers)");
-
-        std::string wanted = options.device, source = "vulkan_options::device";
-        if (wanted.empty()) {
-            if (const char* env = std::getenv("VOXRAY_VULKAN_DEVICE"); env && *env) {
-                wanted = env;
-                source = "VOXRAY_VULKAN_DEVICE";
-            }
-        }
-        std::vector<candidate> all;
-        for (VkPhysicalDevice pd : devices) all.push_back(inspect(pd));
-
-        const candidate* best = nullptr;
-        std::string seen;
-        for (const candidate& c : all) {
-            std::string name = c.properties.deviceName;
-            seen += "\n  " + name + (c.problem.empty() ? "" : " (" + c.problem + ")");
-            if (!wanted.empty() && name.find(wanted) == std::string::npos) continue;
-            if (!c.problem.empty()) continue;
-            if (!best || type_rank(c.properties.deviceType) < type_rank(best->properties.deviceType)) best = &c;
-        }
-        if (!best) {
-            if (!wanted.empty())
-                fail("vulkan: no usable device whose name contains \"", wanted, "\" (from ", source,
-                     "); devices:", seen);
-            fail("vulkan: no usable device (voxray needs Vulkan 1.2 with bufferDeviceAddress and a compute queue); "
-                 "devices:", seen);
-        }
-        chosen_ = *best;
         vkGetPhysicalDeviceMemoryProperties(chosen_.handle, &memory_);
         read_limits();
     }
@@ -294,12 +312,11 @@ private:
     void destroy() {
         if (!owns_) return;
         if (device_) vkDestroyDevice(device_, nullptr);
-        if (instance_) vkDestroyInstance(instance_, nullptr);
         device_ = VK_NULL_HANDLE;
-        instance_ = VK_NULL_HANDLE;
     }
 
-    VkInstance instance_ = VK_NULL_HANDLE;
+    std::shared_ptr<const instance> instance_;  // null on the application's device
+    mutable std::mutex queue_lock_;
     VkDevice device_ = VK_NULL_HANDLE;
     VkQueue queue_ = VK_NULL_HANDLE;
     bool owns_ = true;
@@ -308,5 +325,25 @@ private:
     VkDeviceSize max_allocation_ = 0;
     VkDeviceSize max_buffer_ = 0;
 };
+
+// The context a tracer with these options uses: the application's device as given, or
+// else the one voxray context of the physical device the options choose, created on
+// first use with the process's one instance. Both go when their last user does.
+inline std::shared_ptr<context> shared_context(const vulkan_options& options) {
+    if (options.user_device) return std::make_shared<context>(*options.user_device);
+    static std::mutex lock;
+    static std::weak_ptr<const instance> the_instance;
+    static std::vector<std::weak_ptr<context>> contexts;
+    std::lock_guard guard(lock);
+    std::shared_ptr<const instance> inst = the_instance.lock();
+    if (!inst) the_instance = inst = std::make_shared<const instance>();
+    candidate chosen = choose_device(inst->handle(), options);
+    std::erase_if(contexts, [](const std::weak_ptr<context>& c) { return c.expired(); });
+    for (auto& weak : contexts)
+        if (auto c = weak.lock(); c && c->physical_device() == chosen.handle) return c;
+    auto made = std::make_shared<context>(inst, chosen);
+    contexts.push_back(made);
+    return made;
+}
 
 }  // namespace voxray::vulkan_detail

@@ -53,23 +53,23 @@ static_assert(sizeof(ray) == sizeof(hit), "ray and hit buffers are sized alike")
 constexpr spirv_modules find_modules(std::string_view name) {
     for (const spirv_modules& m : registered_modules)
         if (m.name == name) return m;
-    return {name, {}, {}};
+    return {name, {}};
 }
 
 template <class Kernel>
 class engine {
     static constexpr spirv_modules modules_ = find_modules(Kernel::name);
-    static_assert(!modules_.closest.empty() && !modules_.any.empty(),
+    static_assert(!modules_.trace.empty(),
                   "this structure has no SPIR-V modules: register it with voxray_add_structure (CMake)");
 
 public:
     explicit engine(vulkan_options options)
         : options_(std::move(options)),
-          ctx_(std::make_unique<context>(options_)),
+          ctx_(shared_context(options_)),
           commands_(std::make_unique<command_stream>(*ctx_)) {
         auto start = std::chrono::steady_clock::now();
-        closest_ = std::make_unique<compute_pipeline>(*ctx_, modules_.closest);
-        any_ = std::make_unique<compute_pipeline>(*ctx_, modules_.any);
+        closest_ = std::make_unique<compute_pipeline>(*ctx_, modules_.trace, trace_mode{VX_MODE_CLOSEST});
+        any_ = std::make_unique<compute_pipeline>(*ctx_, modules_.trace, trace_mode{VX_MODE_ANY});
         pipeline_seconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
         auto groups = std::size_t(ctx_->properties().limits.maxComputeWorkGroupCount[0]);
         slice_ = std::min({max_slice_rays, groups * group_size, std::size_t(ctx_->max_buffer() / sizeof(ray)),
@@ -241,7 +241,7 @@ public:
         if (count > 0) record_dispatches(cmd, in, out, count, mode);
     }
 
-    // Frame passes (structures registered with PASSES; world/frame.hpp drives them): a
+    // Frame passes (structures registered with PASSES; world/frame/frame.hpp drives them): a
     // frame buffer of words, host access to it, and one pass run to completion.
     void frame_reserve(std::size_t words) { passes_.reserve(*ctx_, words); }
     void frame_write(std::size_t at, std::span<const std::uint32_t> words) { passes_.write(*ctx_, *commands_, at, words); }
@@ -256,6 +256,8 @@ public:
     std::uint64_t frame_bytes() const { return passes_.bytes(); }
 
     std::string device_name() const { return ctx_->name(); }
+    // The logical device this tracer runs on (shared with every tracer on that device).
+    VkDevice device() const { return ctx_->device(); }
     // Type, limits (maxStorageBufferRange...) and API version of the device in use.
     const VkPhysicalDeviceProperties& device_properties() const { return ctx_->properties(); }
     // True when some buffer is reached through staging copies (discrete GPUs, or
@@ -352,9 +354,9 @@ private:
 
     vulkan_options options_;
     // Declaration order is destruction order reversed: the context goes last.
-    std::unique_ptr<context> ctx_;
+    std::shared_ptr<context> ctx_;  // shared with the other tracers on this device
     std::unique_ptr<command_stream> commands_;
-    std::unique_ptr<compute_pipeline> closest_, any_;  // one pipeline per trace mode
+    std::unique_ptr<compute_pipeline> closest_, any_;  // one pipeline per trace mode, one module
     committer committer_;
     pass_runner passes_;
     buffer blob_, rays_, hits_, rays_staging_, hits_staging_;

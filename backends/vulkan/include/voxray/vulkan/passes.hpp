@@ -1,5 +1,5 @@
 // Frame passes on Vulkan, for structures registered with PASSES (the chunked world's
-// world/frame.h): the structure's <name>_passes module as one pipeline, a frame buffer of
+// world/frame/passes.h): the structure's <name>_passes module as one pipeline, a frame buffer of
 // words that the passes read and write, host access to those words, and one pass run to
 // completion. The engine (vulkan/engine.hpp) owns one and lends it the structure blob.
 #pragma once

@@ -24,22 +24,40 @@ struct push_constants {
     std::uint64_t rays;
     std::uint64_t hits;
     std::uint32_t count;
-    std::uint32_t unused;  // the trace mode is a constant of each module
+    std::uint32_t unused;  // the trace mode is a specialization constant of each pipeline
 };
 static_assert(std::endian::native == std::endian::little, "addresses are passed as (low, high) word pairs");
 static_assert(sizeof(push_constants) == 32);
 static_assert(offsetof(push_constants, rays) == 8 && offsetof(push_constants, hits) == 16);
 static_assert(offsetof(push_constants, count) == 24 && offsetof(push_constants, unused) == 28);
 
+// The trace shaders' specialization constant that holds the mode (entry.glsl, constant_id 0).
+inline constexpr std::uint32_t trace_mode_constant_id = 0;
+// A trace pipeline's mode (VX_MODE_CLOSEST or VX_MODE_ANY), fixed when it is created.
+struct trace_mode {
+    std::uint32_t value;
+};
+
 class compute_pipeline {
 public:
-    // `push_bytes`: size of the push constant record its shader declares (the trace
-    // shaders' push_constants by default; the commit shader has its own).
-    compute_pipeline(const context& ctx, std::span<const std::uint32_t> spirv,
-                     std::uint32_t push_bytes = sizeof(push_constants))
+    // `push_bytes`: size of the push constant record its shader declares (the commit and
+    // pass shaders have their own).
+    compute_pipeline(const context& ctx, std::span<const std::uint32_t> spirv, std::uint32_t push_bytes)
         : device_(ctx.device()), push_bytes_(push_bytes) {
         try {
-            create(spirv);
+            create(spirv, nullptr);
+        } catch (...) {
+            destroy();
+            throw;
+        }
+    }
+    // A trace shader's pipeline (push_constants above) for one trace mode.
+    compute_pipeline(const context& ctx, std::span<const std::uint32_t> spirv, trace_mode mode)
+        : device_(ctx.device()), push_bytes_(sizeof(push_constants)) {
+        VkSpecializationMapEntry entry{trace_mode_constant_id, 0, sizeof(std::uint32_t)};
+        VkSpecializationInfo constants{1, &entry, sizeof(std::uint32_t), &mode.value};
+        try {
+            create(spirv, &constants);
         } catch (...) {
             destroy();
             throw;
@@ -58,7 +76,7 @@ public:
     }
 
 private:
-    void create(std::span<const std::uint32_t> spirv) {
+    void create(std::span<const std::uint32_t> spirv, const VkSpecializationInfo* constants) {
         auto module_info = vk_struct<VkShaderModuleCreateInfo>(VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO);
         module_info.codeSize = spirv.size_bytes();
         module_info.pCode = spirv.data();
@@ -76,6 +94,7 @@ private:
         info.stage.stage = VK_SHADER_STAGE_COMPUTE_BIT;
         info.stage.module = module_;
         info.stage.pName = "main";
+        info.stage.pSpecializationInfo = constants;
         info.layout = layout_;
         vk_check(vkCreateComputePipelines(device_, VK_NULL_HANDLE, 1, &info, nullptr, &pipeline_),
                  "vkCreateComputePipelines");

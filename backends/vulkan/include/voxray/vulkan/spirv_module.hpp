@@ -1,5 +1,6 @@
-// The SPIR-V modules that trace one structure kernel, one per trace mode (the mode is a
-// constant in each), and its frame passes' module where it has one. The generated table (voxray/generated/vulkan_modules.hpp) lists one
+// The SPIR-V module that traces one structure kernel (the trace mode is a specialization
+// constant: one pipeline per mode from the one module), and its frame passes' module
+// where it has one. The generated table (voxray/generated/vulkan_modules.hpp) lists one
 // row per voxray_add_structure call; find_modules is evaluated at compile time, so a
 // structure without modules is a compile-time error, not a run-time surprise.
 #pragma once
@@ -11,8 +12,7 @@ namespace voxray::vulkan_detail {
 
 struct spirv_modules {
     std::string_view name;
-    std::span<const std::uint32_t> closest;
-    std::span<const std::uint32_t> any;
+    std::span<const std::uint32_t> trace;
     std::span<const std::uint32_t> passes = {};  // structures registered with PASSES (the world's frame)
 };
 

@@ -8,7 +8,7 @@
 
 #include "voxray/edit/world_growth.hpp"
 #include "voxray/model/build_threads.hpp"
-#include "voxray/naadf/field_upkeep.hpp"
+#include "voxray/naadf/field_repair.hpp"
 #include "voxray/naadf/naadf.hpp"
 
 namespace voxray {

@@ -11,7 +11,7 @@
 //      that turned empty or uniform collapses, and the page table's fields are checked
 //      when a page turned non-empty. refine() grows the reset fields back later.
 // The blob is exact after every step a ray can see (all happen under the lock). Step 3,
-// refine() and world growth are in naadf_upkeep.hpp.
+// refine() and world growth are in detail/upkeep.hpp.
 #pragma once
 #include <algorithm>
 #include <atomic>

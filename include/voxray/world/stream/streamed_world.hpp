@@ -1,22 +1,28 @@
-// A chunked world streamed from disk (a folder that world/world_build.hpp wrote): the
+// A chunked world streamed from disk (a folder that world/build/world_build.hpp wrote): the
 // residency manager keeps a budget of chunks in memory for the camera, and the blob holds
 // the directory of the current cut plus the shown chunks' DAGs in a pool. An update
-// writes only what changed (new DAGs into free pool space, the directory), and says so
-// through take_dirty_ranges(), so a tracer sends the backend just those words. The blob
-// changes only in update(), on the caller's thread, and whole chunks at a time: rays never
-// see a half-loaded chunk. Same kernel and layout as chunked_world (world/kernel.h).
+// writes only what changed (new DAGs into free pool space, the directory) and logs those
+// words under a new generation (sync/change_log.hpp), so that every tracer of the world,
+// on any backend, sends its device just what it is missing (tracer::update asks
+// changes_since its own generation). The blob changes only in update(), whole chunks at a
+// time: rays never see a half-loaded chunk. Same kernel and layout as chunked_world
+// (world/kernel.h).
 #pragma once
 #include <algorithm>
 #include <cstdint>
 #include <filesystem>
 #include <iterator>
 #include <map>
+#include <mutex>
+#include <shared_mutex>
 #include <span>
 #include <string_view>
 #include <vector>
 
 #include "voxray/core/word_range.hpp"
-#include "voxray/world/residency.hpp"
+#include "voxray/sync/change_log.hpp"
+#include "voxray/sync/sync_frame.hpp"
+#include "voxray/world/stream/residency.hpp"
 #include "voxray/world/world.hpp"
 
 namespace voxray {
@@ -38,6 +44,7 @@ public:
     bool update(glm::dvec3 camera, bool wait = false) {
         residency_.request(camera);
         if (wait) residency_.wait_for_loads();
+        std::unique_lock lock(sync_);  // tracers updating from other threads wait
         bool changed = residency_.commit();
         changed = repack() || changed;
         return changed;
@@ -45,8 +52,25 @@ public:
 
     std::span<const std::uint32_t> blob() const { return words_; }
     std::size_t bytes() const { return words_.size() * sizeof(std::uint32_t); }
-    // The words changed since the last call (all of them after the blob was reallocated).
-    std::vector<word_range> take_dirty_ranges() { return std::exchange(dirty_, {}); }
+
+    // For tracers (tracer.hpp, syncs_by_generation): the blob as it is and its generation,
+    // and the words changed after generation g. update() waits while a frame lives.
+    sync_frame snapshot() const {
+        std::unique_lock lock(sync_);
+        return {std::move(lock), words_, {}, log_.generation(), 0};
+    }
+    sync_frame changes_since(std::uint64_t g) const {
+        std::unique_lock lock(sync_);
+        return {std::move(lock), words_, log_.since(g, std::uint32_t(words_.size())), log_.generation(), 0};
+    }
+    // The words changed since the last call (all of them the first time, and after the
+    // blob was reallocated), for one consumer that copies the blob itself; tracers ask
+    // changes_since with their own generations instead.
+    std::vector<word_range> take_dirty_ranges() {
+        auto frame = changes_since(taken_);
+        taken_ = frame.generation;
+        return std::move(frame.ranges);
+    }
     box3i bounds() const { return residency_.manifest().bounds; }
     const world_manifest& manifest() const { return residency_.manifest(); }
     const residency_manager& residency() const { return residency_; }
@@ -113,6 +137,7 @@ private:
             changed = true;
         }
         directory_used_ = directory_words;
+        log_.commit(std::exchange(dirty_, {}), std::exchange(relaid_out_, false), std::uint32_t(words_.size()));
         return changed;
     }
 
@@ -137,7 +162,8 @@ private:
         slots_ = std::move(kept);
         free_.clear();
         if (cursor < words_.size()) free_[cursor] = words_.size() - cursor;
-        dirty_ = {{0u, std::uint32_t(words_.size())}};
+        dirty_.clear();
+        relaid_out_ = true;  // every tracer takes the new blob whole
         directory_used_ = 0;
     }
 
@@ -172,7 +198,11 @@ private:
     std::uint64_t directory_capacity_ = 0, directory_used_ = 0;
     std::map<chunk_key, slot, chunk_key_less> slots_;
     std::map<std::uint64_t, std::uint64_t> free_;  // offset -> words
-    std::vector<word_range> dirty_;
+    std::vector<word_range> dirty_;  // of the repack under way, then logged
+    bool relaid_out_ = false;        // the repack under way reallocated the blob
+    change_log log_;                 // the words each repack changed, by generation
+    std::uint64_t taken_ = 0;        // the generation take_dirty_ranges() handed out last
+    mutable std::shared_mutex sync_;  // held by update() and by the frames tracers take
     std::vector<chunk_key> shown_keys_;  // the cut the blob holds
 };
 

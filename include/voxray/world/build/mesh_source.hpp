@@ -1,4 +1,4 @@
-// A triangle mesh as the source of a world build (world/world_build.hpp), voxelized one
+// A triangle mesh as the source of a world build (world/build/world_build.hpp), voxelized one
 // chunk at a time: the triangles are binned once into the voxelizer's 128^3 tiles, and a
 // cell's voxels are those its tiles' triangles cover within the cell (the voxelizer's
 // conservative rule, io/voxelizer.hpp: a voxel is set iff its closed cube meets a

@@ -1,11 +1,11 @@
-// A chunked world rendered by the GPU-driven passes (world/frame.h, the paper's section
+// A chunked world rendered by the GPU-driven passes (world/frame/passes.h, the paper's section
 // 3.5) on any backend: the CPU runs the same pass functions on its thread pool.
 //
 //   voxray::tracer<voxray::vulkan, voxray::streamed_world> t(world);   // or chunked_world
 //   voxray::world_frame<voxray::vulkan, voxray::streamed_world> frame(t);
 //   frame_stats s = frame.render(voxray::frame_view(cam, 1280, 720, far), world.blob());
 //   frame.materials();   // per pixel: the hit's attribute (0: no hit), as closest_hit's
-//   frame.visibility();  // per pixel: the 64-bit visibility word (world/frame_layout.h)
+//   frame.visibility();  // per pixel: the 64-bit visibility word (world/frame/layout.h)
 //
 // The frame buffer lives on the backend; render() writes its header, runs the passes one
 // by one (each to completion, so the timings are per pass) and reads back only the
@@ -26,16 +26,16 @@
 #include "voxray/core/ray.hpp"
 #include "voxray/rays/camera.hpp"
 #include "voxray/tracer.hpp"
-#include "voxray/world/frame_layout.h"
+#include "voxray/world/frame/layout.h"
 #include "voxray/world/world.hpp"
 
 namespace voxray::kernels::scalar {
-#include "voxray/world/frame.h"
+#include "voxray/world/frame/passes.h"
 }  // namespace voxray::kernels::scalar
 
 namespace voxray {
 
-// The view the passes render (world/frame_layout.h): camera, unit forward, right and up
+// The view the passes render (world/frame/layout.h): camera, unit forward, right and up
 // scaled by the half-extent of the view, screen size and far plane. Hits' t are depths.
 struct frame_view {
     glm::vec3 position{0.0f}, forward{0.0f, 0.0f, 1.0f}, right{1.0f, 0.0f, 0.0f}, up{0.0f, 1.0f, 0.0f};
@@ -215,7 +215,7 @@ private:
 
     // Sorts the visible chunks nearest first (by near key, then table row), so pairs march
     // roughly front to back and the march skips pixels a nearer chunk already covers
-    // (world/frame.h); it also makes the chunk ids, which the atomic appends leave in any
+    // (world/frame/passes.h); it also makes the chunk ids, which the atomic appends leave in any
     // order, the same on every backend. A few KiB each way, once a frame.
     void order_nearest_first(std::size_t count) {
         if (count < 2) return;
@@ -246,7 +246,7 @@ private:
 
     // The backend side: the GPU engines' frame buffer and pass entry, or host words and
     // the CPU engine's workers running the scalar pass function.
-    static constexpr bool on_device = requires(typename tracer_type::engine_type& e) { e.run_pass(0u, std::uint64_t{}); };
+    static constexpr bool on_device = pass_engine<typename tracer_type::engine_type>;
 
     void reserve(std::size_t words) {
         if constexpr (on_device) tracer_.engine().frame_reserve(words);

@@ -1,110 +1,14 @@
-// Run-time choice of structure x backend for the tool. The library's tracer is a
-// compile-time policy; the tool, which takes names on the command line, walks the type
-// list of registered structures (voxray/generated/structures.hpp) and of backends once,
-// wrapping each combination behind this small virtual interface (outside the hot loop).
-// Baselines (Embree, NanoVDB) are not tracer structures; they come from their own list.
-#pragma once
+// The tool's structure x backend matrix, compiled in this one file: every registered
+// structure and baseline behind engines.hpp's interface, on every backend of backends.hpp.
 #include <chrono>
-#include <memory>
-#include <optional>
-#include <span>
-#include <string>
-#include <utility>
-#include <vector>
+#include <variant>
 
-#include "voxray/core/type_list.hpp"
-#include "voxray/cpu.hpp"
-#include "voxray/edit/region_edit.hpp"
+#include "backends.hpp"
+#include "engines.hpp"
 #include "voxray/generated/structures.hpp"
 #include "voxray/tracer.hpp"
-#if VOXRAY_WITH_OPENCL
-#include "voxray/opencl.hpp"
-#endif
-#if VOXRAY_WITH_VULKAN
-#include "voxray/vulkan.hpp"
-#endif
-#if VOXRAY_WITH_EMBREE
-#include "voxray/embree/box_scene.hpp"
-#include "voxray/embree/quad_scene.hpp"
-#endif
-#if VOXRAY_WITH_NANOVDB
-#include "voxray/nanovdb/hdda_scene.hpp"
-#endif
 
 namespace voxray::tool {
-
-using backends = type_list<cpu, cpu_scalar
-#if VOXRAY_WITH_OPENCL
-                           , opencl
-#endif
-#if VOXRAY_WITH_VULKAN
-                           , vulkan
-#endif
-                           >;
-
-// Peer libraries traced on the CPU beside the structures (Embree, NanoVDB), when built.
-template <class... Lists>
-struct concat_lists;
-template <class... A>
-struct concat_lists<type_list<A...>> { using type = type_list<A...>; };
-template <class... A, class... B, class... Rest>
-struct concat_lists<type_list<A...>, type_list<B...>, Rest...> : concat_lists<type_list<A..., B...>, Rest...> {};
-
-#if VOXRAY_WITH_EMBREE
-using embree_baselines = type_list<embree::quad_scene, embree::box_scene>;
-#else
-using embree_baselines = type_list<>;
-#endif
-#if VOXRAY_WITH_NANOVDB
-using nanovdb_baselines = type_list<vdb::hdda_scene>;
-#else
-using nanovdb_baselines = type_list<>;
-#endif
-using baselines = typename concat_lists<embree_baselines, nanovdb_baselines>::type;
-
-class traceable {
-public:
-    virtual ~traceable() = default;
-    virtual void closest_hit(std::span<const ray> rays, std::span<hit> hits) = 0;
-    virtual void any_hit(std::span<const ray> rays, std::span<hit> hits) = 0;
-    virtual std::string device() const { return "cpu"; }
-    // Brings the backend up to date after edits: an editable structure was edited in place
-    // (its slot holds the dirty ranges of the last edits); the others are rebuilt from the
-    // edited model and sent whole.
-    virtual void after_edits(const voxel_model& edited) = 0;
-    virtual std::uint64_t bytes_uploaded_last_update() const { return 0; }
-    // CPU threads tracing (0: a device does) and rays per lane group (1: scalar).
-    virtual unsigned cpu_threads() const { return 0; }
-    virtual unsigned simd_width() const { return 1; }
-};
-
-// One built structure or baseline, shared by every backend that traces it.
-class slot {
-public:
-    virtual ~slot() = default;
-    virtual std::string name() const = 0;
-    virtual std::size_t bytes() const = 0;
-    virtual double build_seconds() const = 0;
-    virtual bool editable() const { return false; }
-    // A known limitation of a baseline (empty: none): its wrong answers on the rays it
-    // names are labelled, not counted as mismatches.
-    virtual std::string limitation() const { return ""; }
-    virtual bool runs_on(const std::string& backend) const = 0;
-    virtual std::unique_ptr<traceable> trace_on(const std::string& backend) = 0;
-    // Edits the structure in place (editable ones only) and keeps the dirty ranges for
-    // its traceables' after_edits().
-    virtual void apply_edits(std::span<const region_edit>, unsigned /* threads */ = 1) {
-        fail("structure ", name(), " is not editable");
-    }
-    // How long the last apply_edits spent regrowing distance fields (NAADF's refine).
-    virtual double last_refine_seconds() const { return 0; }
-    // Hits carry RGBA8 colours instead of palette indices (the DAG's colour blocks): how
-    // far, per channel in [0, 1], a colour may be from the voxel's palette colour.
-    virtual std::optional<double> colour_tolerance() const { return std::nullopt; }
-    // Structure-specific figures (name, value) beside size and build time (the DAG's
-    // geometry and attribute bytes, merging ratio, colour error).
-    virtual std::vector<std::pair<const char*, double>> figures() const { return {}; }
-};
 
 template <class Backend, class Structure>
 class policy_traceable;
@@ -253,7 +157,7 @@ private:
 };
 
 // Every structure and baseline name the tool knows.
-inline std::string structure_names(const char* separator = ", ") {
+std::string structure_names(const char* separator) {
     std::string out;
     auto add = [&]<class S>() { out += (out.empty() ? "" : separator) + std::string(S::name); };
     for_each_type(registered::structures{}, add);
@@ -263,7 +167,7 @@ inline std::string structure_names(const char* separator = ", ") {
 
 // The structures and baselines that answer every ray of the contract (no known limitation):
 // what `check` compares by default.
-inline std::string exact_structure_names() {
+std::string exact_structure_names() {
     std::string out;
     auto add = [&]<class S>() {
         if constexpr (!requires { S::limitation; }) out += (out.empty() ? "" : ",") + std::string(S::name);
@@ -274,7 +178,7 @@ inline std::string exact_structure_names() {
 }
 
 // Builds structure or baseline `name` from the model.
-inline std::shared_ptr<slot> build_structure(const std::string& name, const voxel_model& model) {
+std::shared_ptr<slot> build_structure(const std::string& name, const voxel_model& model) {
     std::shared_ptr<slot> s;
     for_each_type(registered::structures{}, [&]<class S>() {
         if (!s && name == S::name) s = std::make_shared<structure_slot<S>>(model);
@@ -284,6 +188,12 @@ inline std::shared_ptr<slot> build_structure(const std::string& name, const voxe
     });
     if (!s) fail("unknown or unavailable structure '", name, "' (known: ", structure_names(), ")");
     return s;
+}
+
+std::vector<std::string> backend_names() {
+    std::vector<std::string> out;
+    for_each_type(backends{}, [&]<class B>() { out.emplace_back(B::name); });
+    return out;
 }
 
 }  // namespace voxray::tool

@@ -36,12 +36,6 @@ command add_world_fly(CLI::App& parent);
 
 inline const std::vector<std::string> ray_set_names = {"primary", "secondary", "shadow"};
 
-inline std::vector<std::string> backend_names() {
-    std::vector<std::string> out;
-    for_each_type(backends{}, [&]<class B>() { out.emplace_back(B::name); });
-    return out;
-}
-
 inline std::vector<std::string> split_names(const std::string& s) {
     std::vector<std::string> out;
     std::string item;

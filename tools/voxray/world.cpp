@@ -1,9 +1,9 @@
 // voxray world-build / world-fly: an open world on disk, chunk by chunk, and a camera
 // path through it with streaming. world-build writes the chunk files and the manifest
-// (world/world_build.hpp) plus voxray-world.json (the scene's up axis and palette, for
-// shading); world-fly streams the world along a camera path (world/streamed_world.hpp),
+// (world/build/world_build.hpp) plus voxray-world.json (the scene's up axis and palette, for
+// shading); world-fly streams the world along a camera path (world/stream/streamed_world.hpp),
 // traces each frame on a backend (or, with --passes, renders it with the GPU-driven
-// passes of world/frame.hpp), and reports per frame what was resident and what it cost.
+// passes of world/frame/frame.hpp), and reports per frame what was resident and what it cost.
 #include <sys/resource.h>
 
 #include <chrono>
@@ -14,17 +14,18 @@
 
 #include <nlohmann/json.hpp>
 
+#include "backends.hpp"
 #include "cli.hpp"
 #include "engines.hpp"
 #include "png_writer.hpp"
 #include "scene.hpp"
 #include "voxray/io/mesh_loader.hpp"
 #include "voxray/rays.hpp"
-#include "voxray/world/frame.hpp"
-#include "voxray/world/mesh_source.hpp"
-#include "voxray/world/model_source.hpp"
-#include "voxray/world/streamed_world.hpp"
-#include "voxray/world/world_build.hpp"
+#include "voxray/world/frame/frame.hpp"
+#include "voxray/world/build/mesh_source.hpp"
+#include "voxray/world/build/model_source.hpp"
+#include "voxray/world/stream/streamed_world.hpp"
+#include "voxray/world/build/world_build.hpp"
 
 namespace voxray::tool {
 

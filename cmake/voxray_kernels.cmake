@@ -9,7 +9,7 @@
 # OpenCL C program and its own GLSL shaders (one per trace mode), compiles those to SPIR-V,
 # checks the OpenCL C with clang where clang exists (a kernel error shows up without a
 # device), and adds the structure to the type list the tool and the conformance tests
-# iterate. PASSES (files under include/voxray/, e.g. world/frame.h) adds the structure's
+# iterate. PASSES (files under include/voxray/, e.g. world/frame/passes.h) adds the structure's
 # frame passes: one more OpenCL entry (vx_pass_<name>) and SPIR-V module (<name>_passes),
 # both calling vx_<name>_pass(blob, frame, pass, item).
 # voxray_finish_structures() writes the tables that map names to programs.
@@ -28,8 +28,11 @@ find_program(VOXRAY_CLANG NAMES clang clang-16 clang-15 clang-14 DOC "clang, to 
 function(voxray_flatten)
     cmake_parse_arguments(arg "LINE_MARKERS" "OUTPUT;CPP_STRING" "FILES" ${ARGN})
     if(NOT TARGET voxray_flatten)
-        add_executable(voxray_flatten ${PROJECT_SOURCE_DIR}/scripts/kernel_tools/flatten.cpp)
+        add_executable(voxray_flatten ${PROJECT_SOURCE_DIR}/cmake/flatten.cpp)
         target_compile_features(voxray_flatten PRIVATE cxx_std_20)
+        # A build step, not code under test: never sanitized (VOXRAY_SANITIZE).
+        target_compile_options(voxray_flatten PRIVATE -fno-sanitize=all)
+        target_link_options(voxray_flatten PRIVATE -fno-sanitize=all)
     endif()
     file(GLOB_RECURSE dialect_headers ${PROJECT_SOURCE_DIR}/include/voxray/*.h)
     set(options "")
@@ -134,7 +137,7 @@ function(voxray_finish_structures)
     endforeach()
     string(REPLACE ";" ", " type_list "${types}")
     file(CONFIGURE OUTPUT ${VOXRAY_GENERATED}/voxray/generated/structures.hpp CONTENT
-"// Generated from the voxray_add_structure calls (scripts/cmake/voxray_kernels.cmake): do not edit.
+"// Generated from the voxray_add_structure calls (cmake/voxray_kernels.cmake): do not edit.
 #pragma once
 #include \"voxray/core/type_list.hpp\"
 @includes@
@@ -144,6 +147,9 @@ using structures = type_list<@type_list@>;
 
 }  // namespace voxray::registered
 " @ONLY)
+    if(COMMAND voxray_cpu_finish)
+        voxray_cpu_finish(${names})
+    endif()
     if(COMMAND voxray_opencl_finish)
         voxray_opencl_finish(${names})
     endif()

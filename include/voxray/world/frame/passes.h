@@ -1,6 +1,6 @@
 /* The GPU-driven passes over a chunked world (the paper's section 3.5), in the portable
  * dialect: one item per invocation (scalar lanes on the CPU), every pass a function of
- * (world blob, frame words, item). The host (world/frame.hpp) runs them in this order:
+ * (world blob, frame words, item). The host (world/frame/frame.hpp) runs them in this order:
  *
  *   clear            pixels      visibility and material words to 0
  *   select chunks    table rows  frustum culling: a chunk's box projected to a tile rect
@@ -23,7 +23,7 @@
  * culling only drops pairs whose every pixel is already nearer, so the nearest hit per
  * pixel is the trace's.
  * Needs world/kernel.h and what it needs. Included once (scalar lanes); no include guard. */
-#include "voxray/world/frame_layout.h"
+#include "voxray/world/frame/layout.h"
 
 #if defined(VX_DIALECT_OPENCL)
 #pragma OPENCL EXTENSION cl_khr_int64_base_atomics : enable
@@ -66,7 +66,7 @@ VX_FN vx_wf_view vx_wf_load_view(VX_FRAME f) {
     return v;
 }
 
-/* The ray of pixel (px, py) (frame_layout.h). Two roundings per product and sum on every
+/* The ray of pixel (px, py) (frame/layout.h). Two roundings per product and sum on every
  * backend (no contraction), so the host's rays for the same pixel are these, bit for bit. */
 VX_FN vx_ray vx_wf_pixel_ray(vx_wf_view v, int px, int py) {
     VX_PRECISE float a = (vx_i2f(px) + 0.5f) * v.sx - 1.0f;
@@ -80,7 +80,7 @@ VX_FN vx_ray vx_wf_pixel_ray(vx_wf_view v, int px, int py) {
     return r;
 }
 
-/* 2^24 - 1 at depth 0 down to 0 at the far plane and beyond (frame_layout.h). */
+/* 2^24 - 1 at depth 0 down to 0 at the far plane and beyond (frame/layout.h). */
 VX_FN uint vx_wf_depth_key(float depth, float scale) {
     float q = vx_fmax(vx_fmin(depth * scale, 16777215.0f), 0.0f);
     return VX_WF_DEPTH_MAX - vx_i2u(vx_f2i(q));
@@ -224,7 +224,7 @@ VX_FN void vx_wf_march(VX_BLOB blob, VX_FRAME f, uint item) {
     /* A hit already in that is strictly nearer than the box cannot be beaten by this chunk
      * (its hits are no nearer than its box): skip the walk. Strictly, so a tie still goes
      * to the atomic max and the buffer is the same whatever order the pairs run in. The
-     * host orders visible chunks nearest first (world/frame.hpp), so most pixels behind a
+     * host orders visible chunks nearest first (world/frame/frame.hpp), so most pixels behind a
      * near surface skip the chunks behind it. */
     uint at = vx_frame_load(f, VX_WF_HEADER_VISIBILITY_AT) + 2u * vx_i2u(py * v.width + px);
     if (VX_WF_DEPTH(vx_frame_load(f, at + 1u)) > vx_wf_depth_key(s.t0, v.depth_scale)) return;

@@ -1,6 +1,6 @@
 // Builds a world on disk chunk by chunk, so that the world never exists as one voxel set
-// in memory: LOD 0 chunks from a source's voxels in their cell (world/model_source.hpp,
-// world/mesh_source.hpp), then each LOD from the files of the one below (decoded, 8 at a
+// in memory: LOD 0 chunks from a source's voxels in their cell (world/build/model_source.hpp,
+// world/build/mesh_source.hpp), then each LOD from the files of the one below (decoded, 8 at a
 // time). Every chunk is one independent job (the unit a batch engine would distribute);
 // jobs run on all threads; a chunk file already there with the same source hash is kept,
 // so a build that was interrupted resumes where it stopped. The manifest is written last.
@@ -22,7 +22,7 @@
 
 #include "voxray/model/build_threads.hpp"
 #include "voxray/svdag/decode.hpp"
-#include "voxray/world/chunk_build.hpp"
+#include "voxray/world/build/chunk_dag.hpp"
 #include "voxray/world/chunk_file.hpp"
 #include "voxray/world/lod.hpp"
 #include "voxray/world/manifest.hpp"

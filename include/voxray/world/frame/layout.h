@@ -1,5 +1,5 @@
-/* Word layout of a world frame: what the GPU-driven passes (world/frame.h, after the
- * paper's section 3.5) read and write, shared by the host (world/frame.hpp) and every
+/* Word layout of a world frame: what the GPU-driven passes (world/frame/passes.h, after the
+ * paper's section 3.5) read and write, shared by the host (world/frame/frame.hpp) and every
  * dialect. One buffer of 32-bit words; offsets in words from its start.
  *
  *  frame

@@ -1,4 +1,4 @@
-// A voxel model as the source of a world build (world/world_build.hpp), optionally tiled:
+// A voxel model as the source of a world build (world/build/world_build.hpp), optionally tiled:
 // the model repeated `repeat` times along each axis, copy (i, j, k) shifted by the model's
 // extent times (i, j, k) — a real scene made into a big world without holding the big
 // world in memory (the copies are looked up, never stored).
