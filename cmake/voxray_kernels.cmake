@@ -13,10 +13,11 @@
 # frame passes: one more OpenCL entry (vx_pass_<name>) and SPIR-V module (<name>_passes),
 # both calling vx_<name>_pass(blob, frame, pass, item).
 # voxray_finish_structures() writes the tables that map names to programs.
-# The CPU side needs no CMake: the host header includes kernels/cpu_kernel.inc.
+# The CPU side needs no CMake: the host header includes kernels/kernel_tag.inc.
 
-# The shared dialect every kernel builds on, in dependency order.
-set(VOXRAY_KERNEL_COMMON kernels/prelude.h kernels/ray.h kernels/dda.h kernels/stack.h kernels/bits.h svdag/walk.h)
+# The shared dialect every kernel builds on: the prelude, then the dialect's own list of
+# its files (kernels/dialect.h, which the CPU lanes include too).
+set(VOXRAY_KERNEL_COMMON kernels/prelude.h kernels/dialect.h)
 set(VOXRAY_GENERATED ${PROJECT_BINARY_DIR}/generated)
 file(MAKE_DIRECTORY ${VOXRAY_GENERATED}/voxray/generated ${VOXRAY_GENERATED}/voxray/shaders ${VOXRAY_GENERATED}/opencl ${VOXRAY_GENERATED}/vulkan)
 find_program(VOXRAY_CLANG NAMES clang clang-16 clang-15 clang-14 DOC "clang, to check OpenCL C kernels at build time")

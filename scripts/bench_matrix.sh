@@ -27,4 +27,4 @@ echo "== matrix: $WIDTH x $HEIGHT, $RUNS runs"
 # bench exits 1 when a row disagrees or fails; the table shows which, so go on.
 "$BUILD_DIR/voxray" bench $SCENES --resolution "$RESOLUTION" --width "$WIDTH" --height "$HEIGHT" --runs "$RUNS" \
     --out "$OUT/results.jsonl" || echo "== some rows disagree or failed: see the mismatches column"
-/usr/bin/python3 "$ROOT/scripts/plot_bench.py" "$OUT/results.jsonl" --out "$OUT" --readme "$ROOT/README.md"
+/usr/bin/python3 "$ROOT/scripts/plot_bench.py" "$OUT/results.jsonl" --out "$OUT"

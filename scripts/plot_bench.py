@@ -294,13 +294,15 @@ def main():
     plot_steps(ok, out / "steps.png")
     text = table(header, ok, [r for r in rows if "error" in r])
     (out / "table.md").write_text(text)
+    replaced = False
     if args.readme:
         readme = pathlib.Path(args.readme)
         if BEGIN in readme.read_text():
             replace_section(readme, BEGIN, END, text)
+            replaced = True
         else:  # the table lives in DIR/table.md; the file only links to it
             print(f"{readme}: no {BEGIN} marker, left as it is (the table is {out}/table.md)")
-    print(f"wrote {out}/mrays.png, speed_vs_memory.png, steps.png, table.md" + (f", {args.readme}" if args.readme else ""))
+    print(f"wrote {out}/mrays.png, speed_vs_memory.png, steps.png, table.md" + (f", {args.readme}" if replaced else ""))
 
 
 if __name__ == "__main__":

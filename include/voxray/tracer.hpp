@@ -42,7 +42,7 @@
 namespace voxray {
 
 // What tracer<Backend, Structure> needs of a structure: a kernel tag (declared by
-// kernels/cpu_kernel.inc in the structure's header), a name, and its blob of words.
+// kernels/kernel_tag.inc in the structure's header), a name, and its blob of words.
 template <class S>
 concept structure = requires(const S& s) {
     typename S::kernel;

@@ -27,7 +27,7 @@ template <class... S>
 struct index_material_structures<type_list<S...>> {
     template <class One>
     static constexpr bool colour = requires { One::material_is_colour; };
-    using type = typename concat<std::conditional_t<colour<S>, type_list<>, type_list<S>>...>::type;
+    using type = concat_type_lists_t<std::conditional_t<colour<S>, type_list<>, type_list<S>>...>;
 };
 
 }  // namespace voxray::test

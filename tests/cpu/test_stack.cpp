@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "voxray/check/ray_sets.hpp"
-#include "voxray/kernels/cpu_lanes.hpp"
+#include "voxray/cpu/lanes.hpp"
 
 // run_stack_program(seed, rounds): the number of entries checked; fails the test on the
 // first entry that differs. Defined once per lane namespace, in that namespace's ISA.

@@ -11,7 +11,7 @@
 #include <string>
 
 #include "voxray/check/ray_sets.hpp"
-#include "voxray/kernels/cpu_lanes.hpp"
+#include "voxray/cpu/lanes.hpp"
 
 namespace {
 

@@ -16,21 +16,6 @@ struct trace_case {
     using structure = Structure;
 };
 
-template <class... Lists>
-struct concat;
-template <>
-struct concat<> {
-    using type = type_list<>;
-};
-template <class... A>
-struct concat<type_list<A...>> {
-    using type = type_list<A...>;
-};
-template <class... A, class... B, class... Rest>
-struct concat<type_list<A...>, type_list<B...>, Rest...> {
-    using type = typename concat<type_list<A..., B...>, Rest...>::type;
-};
-
 // type_list<trace_case<B, S>...> for every B in Backends and S in Structures.
 template <class Backends, class Structures>
 struct cross;
@@ -42,7 +27,7 @@ struct cross<type_list<B...>, Structures> {
     struct with<One, type_list<S...>> {
         using type = type_list<trace_case<One, S>...>;
     };
-    using type = typename concat<typename with<B, Structures>::type...>::type;
+    using type = concat_type_lists_t<typename with<B, Structures>::type...>;
 };
 
 template <class List>

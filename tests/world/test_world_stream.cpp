@@ -58,6 +58,14 @@ world_build_options small_chunks(unsigned threads = 2) {
     return o;
 }
 
+// Streaming that never runs out of budget: what is shown follows Equation 1 alone.
+residency_options roomy_residency() {
+    residency_options o;
+    o.streaming_factor = 1.5;
+    o.budget_bytes = 1 << 30;
+    return o;
+}
+
 std::vector<char> bytes_of(const fs::path& p) {
     std::ifstream in(p, std::ios::binary);
     return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
@@ -213,10 +221,7 @@ void streamed_matches_memory(const char* backend) {
     mo.chunk_bits = 4;
     chunked_world memory(model, mo);
 
-    residency_options ro;
-    ro.streaming_factor = 1.5;
-    ro.budget_bytes = 1 << 30;
-    streamed_world world(dir.path, ro);
+    streamed_world world(dir.path, roomy_residency());
     tracer<Backend, streamed_world> streamed(world);
     auto rays = mixed_rays(model.bounds(), 3000, 17);
     std::vector<hit> got(rays.size()), expected(rays.size());
@@ -272,10 +277,7 @@ TEST(world_stream, every_tracer_of_one_world_stays_exact) {
     voxel_model model = world_test_model();
     temp_dir dir;
     build_world(model_source(model), dir.path, small_chunks());
-    residency_options ro;
-    ro.streaming_factor = 1.5;
-    ro.budget_bytes = 1 << 30;
-    streamed_world world(dir.path, ro);
+    streamed_world world(dir.path, roomy_residency());
     auto rays = mixed_rays(model.bounds(), 3000, 23);
     std::vector<hit> expected(rays.size());
     // One tracer per linked backend; each frame: update, check the blob it holds, trace.

@@ -62,6 +62,19 @@ inline CLI::Validator names_from(std::vector<std::string> known, std::string wha
         "NAME[,NAME...]");
 }
 
+// CLI::Range for real numbers that also refuses NaN (every comparison with NaN is false,
+// so a plain range lets it through).
+inline CLI::Validator finite_range(double lo, double hi) {
+    return CLI::Validator(
+        [lo, hi](std::string& value) -> std::string {
+            double v = 0;
+            if (!CLI::detail::lexical_cast(value, v)) return "Value " + value + " is not a number";
+            if (!(v >= lo && v <= hi)) return "Value " + value + " not in range " + CLI::detail::to_string(lo) + " to " + CLI::detail::to_string(hi);
+            return "";
+        },
+        "FLOAT in [" + CLI::detail::to_string(lo) + " - " + CLI::detail::to_string(hi) + "]");
+}
+
 inline std::vector<std::string> all_structure_names() { return split_names(structure_names(",")); }
 
 // Fails now, before any work, when `path` cannot be written; leaves no file behind.

@@ -86,7 +86,7 @@ command add_render(CLI::App& parent) {
     app->add_option("--target", o->target, "point the free camera looks at (default: the scene's centre)")
         ->expected(3)->delimiter(',')->needs(eye);
     app->add_option("--fov", o->fov, "free camera's vertical field of view, degrees")
-        ->check(CLI::Range(1.0f, 179.0f))->needs(eye)->capture_default_str();
+        ->check(finite_range(1.0, 179.0))->needs(eye)->capture_default_str();
     return {app, [o] { return render(*o); }};
 }
 

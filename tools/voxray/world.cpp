@@ -277,7 +277,7 @@ command add_world_build(CLI::App& parent) {
     app->add_option("--chunk-bits", o->chunk_bits, "chunks of 2^N voxels a side")->check(CLI::Range(4, 10))->capture_default_str();
     app->add_option("--density", o->density, "children (of 8) a coarse voxel needs")->check(CLI::Range(1, 8))->capture_default_str();
     app->add_flag("--colours", o->colours, "colour-block attributes (LODs average colours) instead of exact palette indices");
-    app->add_option("--colour-error", o->colour_error, "largest colour error in a block")->check(CLI::Range(0.0, 1.0))->capture_default_str();
+    app->add_option("--colour-error", o->colour_error, "largest colour error in a block")->check(finite_range(0.0, 1.0))->capture_default_str();
     app->add_option("--tile", o->tile, "a .vox or built-in scene repeated X Y Z times")->expected(3)->check(CLI::Range(1, 4096));
     app->add_option("--threads", o->threads, "build threads (0: all)")->capture_default_str();
     app->add_option("--json", o->json_out, "append the build report as a JSON line");
@@ -292,8 +292,8 @@ command add_world_fly(CLI::App& parent) {
     app->add_option("--frames", o->frames, "frames along the path")->check(CLI::Range(1, 100000))->capture_default_str();
     app->add_option("--width", o->width)->check(CLI::Range(8, 8192))->capture_default_str();
     app->add_option("--height", o->height)->check(CLI::Range(8, 8192))->capture_default_str();
-    app->add_option("--factor", o->factor, "StreamingFactor of LOD selection (Aokana Eq. 1)")->check(CLI::Range(0.01, 1000.0))->capture_default_str();
-    app->add_option("--budget-mib", o->budget_mib, "most chunk bytes resident")->check(CLI::Range(1.0, 1e7))->capture_default_str();
+    app->add_option("--factor", o->factor, "StreamingFactor of LOD selection (Aokana Eq. 1)")->check(finite_range(0.01, 1000.0))->capture_default_str();
+    app->add_option("--budget-mib", o->budget_mib, "most chunk bytes resident")->check(finite_range(1.0, 1e7))->capture_default_str();
     app->add_flag("--lod0", o->lod0, "every chunk at LOD 0, no budget: the reference frames");
     app->add_flag("--passes", o->passes, "render with the GPU-driven passes (chunk and tile selection, Hi-Z, visibility "
                   "buffer, colour resolve), timed pass by pass; primary visibility only, no shadow rays");

@@ -60,7 +60,7 @@
 
 #define VOXRAY_KERNEL_NAME brickmap
 #define VOXRAY_KERNEL_FILE "voxray/brickmap/kernel.h"
-#include "voxray/kernels/cpu_kernel.inc"
+#include "voxray/kernels/kernel_tag.inc"
 
 namespace voxray {
 

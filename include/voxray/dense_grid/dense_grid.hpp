@@ -16,7 +16,7 @@
 
 #define VOXRAY_KERNEL_NAME dense_grid
 #define VOXRAY_KERNEL_FILE "voxray/dense_grid/kernel.h"
-#include "voxray/kernels/cpu_kernel.inc"
+#include "voxray/kernels/kernel_tag.inc"
 
 namespace voxray {
 

@@ -1,6 +1,6 @@
 /* Traversal of the dense reference grid (dense_grid/layout.h): the exact DDA
  * visits every cell and tests its occupancy bit. Needs prelude.h, ray.h and dda.h first.
- * Included once per lane set; no include guard on purpose (see kernels/cpu_kernel.inc). */
+ * Included once per lane set; no include guard on purpose (see kernels/kernel_tag.inc). */
 #include "voxray/dense_grid/layout.h"
 
 /* Header fields every step needs, read once per ray (uniform across lanes). */

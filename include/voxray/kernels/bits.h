@@ -6,7 +6,7 @@
  *                      exact for x < 2^24 (through a float's exponent; larger x may
  *                      come out one too high)
  *
- * Included once per lane set; no include guard on purpose (see kernels/cpu_lanes.hpp). */
+ * Included once per lane set; no include guard on purpose (see cpu/lanes.hpp). */
 
 VX_FN vx_u32 vx_popcount(vx_u32 x) {
     x = x - ((x >> 1) & 0x55555555u);

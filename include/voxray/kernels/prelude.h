@@ -1,6 +1,6 @@
 /* The portable kernel dialect. One traversal source compiles as:
  *   VX_DIALECT_CPP    C++ scalar lanes   (types: float, int32_t, bool)
- *   VX_DIALECT_CPP    C++ SIMD lanes     (GCC vector types; see kernels/cpu_lanes.hpp)
+ *   VX_DIALECT_CPP    C++ SIMD lanes     (GCC vector types; see cpu/lanes.hpp)
  *   VX_DIALECT_OPENCL OpenCL C 1.2       (PoCL; source embedded at build time)
  *   VX_DIALECT_GLSL   GLSL 4.50 -> SPIR-V (glslang at build time; buffers by device address)
  *
@@ -15,11 +15,11 @@
  *    VX_REF(s).field, and is called with VX_ADDR(state) (a reference in C++ and GLSL's
  *    inout, a pointer in OpenCL C, which has no references);
  *  - kernel states hold per-lane fields only: the CPU stream merges them lane by lane
- *    generically (vx_select_state_into in kernels/cpu_simd_lanes.inc), so no kernel writes a select;
+ *    generically (vx_select_state_into in cpu/simd_lanes.inc), so no kernel writes a select;
  *  - an entry point's parameter that one structure does not need is marked VX_UNUSED(p);
  *  - a structure kernel `s` names its entry points vx_<s>_load, _begin, _step, _finish,
  *    _status and _trace; `mode` arguments are VX_MODE_* constants at every call site.
- * In C++ the helpers are functions defined per lane namespace (cpu_lanes.hpp); here they
+ * In C++ the helpers are functions defined per lane namespace (voxray/cpu/lanes.hpp); here they
  * are macros for the GPU dialects.
  */
 #ifndef VOXRAY_KERNELS_PRELUDE_H
@@ -73,7 +73,7 @@ typedef bool vx_mask;
  * refuses to run its passes (opencl/engine.hpp). */
 #define vx_atomic_max64(f, i, hi, lo) ((void)(f), (void)(i), (void)(hi), (void)(lo))
 #endif
-/* Spelled like the C++ lanes (kernels/cpu_lanes.hpp), not as OpenCL fmin/fmax: those
+/* Spelled like the C++ lanes (cpu/lanes.hpp), not as OpenCL fmin/fmax: those
  * return the other operand for a NaN (the C++ select returns the second) and leave the
  * sign of min(+0, -0) to the device, so t could be -0 on one backend and +0 on another. */
 static inline float vx_fmin(float a, float b) { return a < b ? a : b; }
@@ -116,7 +116,7 @@ static inline float vx_fmax(float a, float b) { return a > b ? a : b; }
 #define vx_frame_store(f, i, v) (vx_words_rw(f).w[(i)] = (v))
 #define vx_atomic_add(f, i, v) atomicAdd(vx_words_rw(f).w[(i)], (v))
 #define vx_atomic_max64(f, i, hi, lo) atomicMax(vx_words64(f).w[(i) >> 1], packUint2x32(uvec2((lo), (hi))))
-/* Spelled like the C++ lanes (kernels/cpu_lanes.hpp), not as GLSL min/max: those leave
+/* Spelled like the C++ lanes (cpu/lanes.hpp), not as GLSL min/max: those leave
  * the result for a NaN operand undefined (lavapipe returns the other operand, the C++
  * select returns b), so a NaN would steer the GPU and the CPU down different cells. */
 float vx_fmin(float a, float b) { return a < b ? a : b; }
@@ -127,7 +127,7 @@ layout(buffer_reference, std430, buffer_reference_align = 4) readonly buffer vx_
 /* Kernel code must not use GLSL keywords or reserved words (out, active, input...) or
  * OpenCL C ones (local, global, kernel...) as names. */
 
-#else /* C++: the including file (cpu_lanes.hpp) supplies types and helpers. */
+#else /* C++: the including file (voxray/cpu/lanes.hpp) supplies types and helpers. */
 #define VX_DIALECT_CPP 1
 #define VX_FN inline __attribute__((always_inline))
 #define VX_STRUCT(name) struct name {

@@ -1,6 +1,6 @@
 /* Kernel-side ray and hit: per-lane fields in the order of core/ray_hit_layout.h, so
  * with scalar lanes (GPU dialects) they are exactly the records in the ray/hit buffers.
- * Included once per lane set; no include guard on purpose (see kernels/cpu_lanes.hpp). */
+ * Included once per lane set; no include guard on purpose (see cpu/lanes.hpp). */
 VX_STRUCT(vx_ray)
     vx_f32 ox, oy, oz, tmin;
     vx_f32 dx, dy, dz, tmax;

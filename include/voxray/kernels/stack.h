@@ -11,7 +11,7 @@
  *   vx_stack_load(VX_ADDR(s.stack), level)              slot[level] of every lane
  *
  * Levels must lie in [0, VX_STACK_DEPTH); the caller's depth bound keeps them there.
- * Included once per lane set; no include guard on purpose (see kernels/cpu_lanes.hpp). */
+ * Included once per lane set; no include guard on purpose (see cpu/lanes.hpp). */
 #ifndef VX_STACK_DEPTH
 #define VX_STACK_DEPTH 16
 #endif

@@ -41,7 +41,7 @@
 
 #define VOXRAY_KERNEL_NAME naadf
 #define VOXRAY_KERNEL_FILE "voxray/naadf/kernel.h"
-#include "voxray/kernels/cpu_kernel.inc"
+#include "voxray/kernels/kernel_tag.inc"
 
 namespace voxray {
 

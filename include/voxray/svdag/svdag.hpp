@@ -16,7 +16,7 @@
 
 #define VOXRAY_KERNEL_NAME svdag
 #define VOXRAY_KERNEL_FILE "voxray/svdag/kernel.h"
-#include "voxray/kernels/cpu_kernel.inc"
+#include "voxray/kernels/kernel_tag.inc"
 
 namespace voxray {
 

@@ -28,7 +28,7 @@
 
 #define VOXRAY_KERNEL_NAME world
 #define VOXRAY_KERNEL_FILE "voxray/world/kernel.h"
-#include "voxray/kernels/cpu_kernel.inc"
+#include "voxray/kernels/kernel_tag.inc"
 
 namespace voxray {
 

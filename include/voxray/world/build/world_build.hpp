@@ -80,6 +80,8 @@ inline bool resumable(const std::filesystem::path& path, std::uint32_t hash, int
 template <class Source>
 world_build_report build_world(const Source& source, const std::filesystem::path& dir, const world_build_options& o) {
     using namespace world_build_detail;
+    // An empty path would name the current folder's files (and remove its manifest).
+    if (dir.empty()) fail("world build: the output folder's path is empty");
     auto start = std::chrono::steady_clock::now();
     world_manifest m;
     m.bounds = source.bounds();

@@ -22,8 +22,12 @@
 
 #include <glm/geometric.hpp>
 
+#if !defined(VOXRAY_LINKED_CPU)
+#error "voxray/world/frame/frame.hpp needs voxray::cpu (the passes' CPU path, and the scalar lanes it runs them on): link it"
+#endif
 #include "voxray/core/error.hpp"
 #include "voxray/core/ray.hpp"
+#include "voxray/cpu/lanes.hpp"
 #include "voxray/rays/camera.hpp"
 #include "voxray/tracer.hpp"
 #include "voxray/world/frame/layout.h"

@@ -14,7 +14,7 @@
 #include "voxray/core/hit.hpp"
 #include "voxray/core/ray.hpp"
 #include "voxray/cpu/thread_pool.hpp"
-#include "voxray/kernels/cpu_lanes.hpp"
+#include "voxray/cpu/lanes.hpp"
 #include "voxray/core/word_range.hpp"
 #include "voxray/sync/dirty_ranges.hpp"
 
@@ -82,14 +82,15 @@ namespace kernels::scalar {
 template <class Kernel, std::uint32_t Mode>
 void trace_stream(const std::uint32_t* blob, const voxray::ray* rays, voxray::hit* hits, std::size_t count) {
     using K = kernel_lanes<Kernel>;
-    for (std::size_t i = 0; i < count; ++i) hits[i] = cpu_detail::from_lane(K::template trace<Mode>(blob, cpu_detail::to_lane(rays[i])));
+    for (std::size_t i = 0; i < count; ++i)
+        hits[i] = cpu_detail::from_lane(K::template trace<Mode>(blob, cpu_detail::to_lane(rays[i])));
 }
 }  // namespace kernels::scalar
 
 // The streams of one structure kernel in one lane set (scalar, simd8, simd16), both
 // trace modes: what the compiled voxray::kernels library instantiates once, one source
 // file per kernel and lane set, and what its users then declare `extern` instead of
-// compiling again (PREFIX: `extern` or nothing; see voxray/cpu/kernel_instances.hpp).
+// compiling again (PREFIX: `extern` or nothing; voxray/generated/cpu_kernel_instances.hpp).
 #define VOXRAY_CPU_STREAM_INSTANCES(PREFIX, LANES, KERNEL)                                                   \
     PREFIX template void voxray::kernels::LANES::trace_stream<KERNEL, VX_MODE_CLOSEST>(                      \
         const std::uint32_t*, const voxray::ray*, voxray::hit*, std::size_t);                                \

@@ -1,4 +1,4 @@
-// One embedded OpenCL program: the structure kernel's name (kernels/cpu_kernel.inc tags
+// One embedded OpenCL program: the structure kernel's name (kernels/kernel_tag.inc tags
 // carry the same) and its flattened OpenCL C source. The generated table
 // (voxray/generated/opencl_programs.hpp) lists one per voxray_add_structure call.
 #pragma once

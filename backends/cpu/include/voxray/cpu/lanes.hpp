@@ -4,8 +4,9 @@
 // the very same kernel files; only the lane types and helpers differ.
 //
 // This header sets up both lane namespaces with the shared dialect (ray, DDA). Each
-// structure's kernel joins them through kernels/cpu_kernel.inc, which its host header
-// includes: kernel files have no include guards, so each is included once per namespace.
+// structure's kernel joins them through voxray/cpu/kernel_lanes.inc, which its host header
+// includes (by kernels/kernel_tag.inc) in programs that link voxray::cpu: kernel files have
+// no include guards, so each is included once per namespace.
 #pragma once
 #include <array>
 #include <bit>
@@ -30,7 +31,7 @@ using vx_u32 = std::uint32_t;
 using vx_mask = bool;
 inline constexpr int width = 1;
 // One structure kernel's state machine (load, begin, step, finish, status, trace) in this
-// lane set; specialized by VOXRAY_KERNEL_LANES (kernels/cpu_kernel.inc).
+// lane set; specialized by VOXRAY_KERNEL_LANES (kernels/kernel_tag.inc).
 template <class Kernel>
 struct kernel_lanes;
 
@@ -56,11 +57,7 @@ inline void vx_select_state_into(bool m, const State& a, State& into) {
     if (m) into = a;
 }
 
-#include "voxray/kernels/ray.h"
-#include "voxray/kernels/dda.h"
-#include "voxray/kernels/stack.h"
-#include "voxray/kernels/bits.h"
-#include "voxray/svdag/walk.h"
+#include "voxray/kernels/dialect.h"
 
 // Frame words (world/frame/passes.h, scalar lanes only): one item per call, threads share the
 // frame, so counters and the visibility buffer use the same atomics as the GPUs.
@@ -109,7 +106,7 @@ inline bool cpu_has_avx512() {
 VOXRAY_AVX2_BEGIN
 #define VX_SIMD_WIDTH 8
 namespace simd8 {
-#include "voxray/kernels/cpu_simd_lanes.inc"
+#include "voxray/cpu/simd_lanes.inc"
 }  // namespace simd8
 #undef VX_SIMD_WIDTH
 VOXRAY_AVX2_END
@@ -117,7 +114,7 @@ VOXRAY_AVX2_END
 VOXRAY_AVX512_BEGIN
 #define VX_SIMD_WIDTH 16
 namespace simd16 {
-#include "voxray/kernels/cpu_simd_lanes.inc"
+#include "voxray/cpu/simd_lanes.inc"
 }  // namespace simd16
 #undef VX_SIMD_WIDTH
 VOXRAY_AVX512_END
