@@ -12,6 +12,7 @@
 #include <memory>
 #include <set>
 #include <string>
+#include <thread>
 #include <unistd.h>
 
 #include "hit_bits.hpp"
@@ -270,8 +271,8 @@ TEST(world_stream, matches_the_in_memory_world_on_vulkan) { streamed_matches_mem
 #endif
 
 // Several tracers on one streamed world, one per backend, each refreshed with
-// update(world) after every frame: each must hold the world's current blob and trace what
-// a tracer made from scratch sees. (Handing the changed words to whichever tracer asked
+// update(world) after every frame, from threads of their own: each must hold the world's
+// current blob and trace what a tracer made from scratch sees. (Handing the changed words to whichever tracer asked
 // first left the others with a new directory over an old DAG pool.)
 TEST(world_stream, every_tracer_of_one_world_stays_exact) {
     voxel_model model = world_test_model();
@@ -304,7 +305,10 @@ TEST(world_stream, every_tracer_of_one_world_stays_exact) {
         glm::dvec3 camera = glm::dvec3(b.min) + glm::dvec3(b.extent()) * glm::dvec3(0.1 + 0.18 * frame, 0.5, 1.2);
         world.update(camera, true);
         tracer<cpu_scalar, streamed_world>(world, cpu_options{1}).closest_hit(rays, expected);  // from scratch
-        for (auto& f : frames) f(frame);
+        // Each tracer updates and traces on a thread of its own, all at once.
+        std::vector<std::thread> threads;
+        for (auto& f : frames) threads.emplace_back(f, frame);
+        for (auto& t : threads) t.join();
     }
     EXPECT_GT(world.residency().stats().evictions, 0u);
 }

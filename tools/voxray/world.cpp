@@ -136,8 +136,18 @@ camera path_camera(const box3i& b, int up_axis, int frame, int frames) {
     return look_at(eye, target, 60.0f, up);
 }
 
+// Host memory a pixel of a flight takes: its ray, hit, shadow ray and shadow hit, its
+// RGBA and (with --passes) its 64-bit visibility word.
+constexpr std::uint64_t fly_bytes_per_pixel = 2 * sizeof(ray) + 2 * sizeof(hit) + 4 + 8;
+
 template <class Backend>
 int fly(const fly_options& o) {
+    // Checked before the world opens: what a frame needs, and where its output goes.
+    require_memory(fly_bytes_per_pixel * std::uint64_t(o.width) * std::uint64_t(o.height),
+                   "world-fly " + std::to_string(o.width) + " x " + std::to_string(o.height) + " (" +
+                       std::to_string(fly_bytes_per_pixel) + " bytes a pixel)");
+    if (!o.json_out.empty()) require_writable(o.json_out, "--json");
+    if (!o.png_dir.empty()) std::filesystem::create_directories(o.png_dir);
     residency_options ro;
     ro.streaming_factor = o.lod0 ? 1e9 : o.factor;
     ro.budget_bytes = o.lod0 ? std::uint64_t(-1) / 2 : std::uint64_t(o.budget_mib * 1048576.0);
@@ -157,7 +167,6 @@ int fly(const fly_options& o) {
         pal[std::uint8_t(i)].colour = rgba{std::uint8_t(c), std::uint8_t(c >> 8), std::uint8_t(c >> 16), 255};
     }
     tracer<Backend, streamed_world> t(world);
-    if (!o.png_dir.empty()) std::filesystem::create_directories(o.png_dir);
     std::ofstream out;
     if (!o.json_out.empty()) out.open(o.json_out, std::ios::app);
     double disk = double(m.disk_bytes());

@@ -17,6 +17,7 @@
 #include "voxray/cpu/lanes.hpp"
 #include "voxray/core/word_range.hpp"
 #include "voxray/sync/dirty_ranges.hpp"
+#include "voxray/sync/upload_plan.hpp"
 
 namespace voxray {
 
@@ -115,11 +116,11 @@ public:
     void upload(std::span<const std::uint32_t> blob) {
         if (borrow_) {
             view_ = blob;  // the structure's own words: nothing copied
-            return count_upload(0);
+            return ledger_.count(0);
         }
         blob_.assign(blob.begin(), blob.end());
         view_ = blob_;
-        count_upload(blob.size_bytes());
+        ledger_.count(blob.size_bytes());
     }
 
     // Copies only the words of `ranges` (any order; overlaps and empty ranges allowed)
@@ -131,7 +132,7 @@ public:
             std::copy_n(blob.data() + r.offset, r.count, blob_.data() + r.offset);
             words += r.count;
         }
-        count_upload(words * sizeof(std::uint32_t));
+        ledger_.count(words * sizeof(std::uint32_t));
     }
 
     // The blob grew and kept every old word in place (tracer.hpp, grows_in_place): the
@@ -144,8 +145,8 @@ public:
     }
 
     // Bytes the last upload or update copied, and their running total.
-    std::uint64_t bytes_uploaded_last_update() const { return last_bytes_; }
-    std::uint64_t bytes_uploaded_total() const { return total_bytes_; }
+    std::uint64_t bytes_uploaded_last_update() const { return ledger_.last(); }
+    std::uint64_t bytes_uploaded_total() const { return ledger_.total(); }
 
     // For tests and diagnostics, like the GPU engines': a copy of the blob traced.
     std::vector<std::uint32_t> download_blob() const { return {view_.begin(), view_.end()}; }
@@ -206,17 +207,13 @@ private:
         else pool_->parallel_for(batches, batch);
     }
 
-    void count_upload(std::uint64_t bytes) {
-        last_bytes_ = bytes;
-        total_bytes_ += bytes;
-    }
 
     std::shared_ptr<thread_pool> pool_;
     unsigned width_ = 1;  // 1: the scalar kernel
     bool borrow_ = false;
     std::vector<std::uint32_t> blob_;     // the copy traced, unless borrowing
     std::span<const std::uint32_t> view_;  // what is traced: blob_, or the structure's words
-    std::uint64_t last_bytes_ = 0, total_bytes_ = 0;
+    sync::upload_ledger ledger_;
 };
 
 }  // namespace cpu_detail

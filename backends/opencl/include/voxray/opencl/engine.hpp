@@ -22,6 +22,7 @@
 #include "voxray/opencl/interop.hpp"
 #include "voxray/opencl/program_cache.hpp"
 #include "voxray/sync/dirty_ranges.hpp"
+#include "voxray/sync/upload_plan.hpp"
 
 namespace voxray::opencl_detail {
 
@@ -81,7 +82,7 @@ public:
               "clEnqueueWriteBuffer", "uploading the structure blob");
         uploaded_ = true;
         blob_words_ = blob.size();
-        count_upload(bytes);
+        ledger_.count(bytes);
     }
 
     // Sends the whole blob again.
@@ -92,11 +93,9 @@ public:
     // uploaded, else (or when the packet would not be smaller than the blob) the whole
     // blob is uploaded instead.
     void update_ranges(std::span<const std::uint32_t> blob, std::span<const word_range> ranges) {
-        if (!uploaded_ || blob.size() != blob_words_) return upload(blob);
-        std::vector<word_range> merged = sync::normalize_ranges(ranges, blob.size());
-        if (merged.empty()) return count_upload(0);
-        if (sync::packet_words(merged.size(), sync::total_words(merged)) >= blob.size()) return upload(blob);
-        count_upload(committer_.commit(queue_.get(), blob_.get(), blob, merged));
+        auto plan = sync::plan_upload(uploaded_ ? blob_words_ : 0, blob, ranges);
+        if (plan.what == sync::upload_plan::whole) return upload(blob);
+        ledger_.count(plan.what == sync::upload_plan::nothing ? 0 : committer_.commit(queue_.get(), blob_.get(), blob, plan.ranges));
     }
 
     // The blob grew and kept every old word in place (tracer.hpp, grows_in_place): the old
@@ -126,8 +125,8 @@ public:
     }
 
     // Bytes the last upload or update sent to the device, and their running total.
-    std::uint64_t bytes_uploaded_last_update() const { return last_bytes_; }
-    std::uint64_t bytes_uploaded_total() const { return total_bytes_; }
+    std::uint64_t bytes_uploaded_last_update() const { return ledger_.last(); }
+    std::uint64_t bytes_uploaded_total() const { return ledger_.total(); }
 
     // For tests and diagnostics: reads the device blob back (as many words as were last
     // uploaded), to compare word for word with the host's.
@@ -239,10 +238,6 @@ public:
     std::size_t work_group_size() const { return local_size_; }
 
 private:
-    void count_upload(std::uint64_t bytes) {
-        last_bytes_ = bytes;
-        total_bytes_ += bytes;
-    }
 
     void check_frame_range(std::size_t at, std::size_t n) const {
         if ((at + n) * 4 > frame_.capacity())
@@ -303,7 +298,7 @@ private:
     std::size_t local_size_ = 1;
     bool uploaded_ = false;
     std::size_t blob_words_ = 0;
-    std::uint64_t last_bytes_ = 0, total_bytes_ = 0;
+    sync::upload_ledger ledger_;
 };
 
 }  // namespace voxray::opencl_detail

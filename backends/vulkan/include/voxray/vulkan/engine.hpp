@@ -29,6 +29,7 @@
 #include "voxray/generated/vulkan_modules.hpp"
 #include "voxray/vulkan/buffer.hpp"
 #include "voxray/sync/dirty_ranges.hpp"
+#include "voxray/sync/upload_plan.hpp"
 #include "voxray/vulkan/commands.hpp"
 #include "voxray/vulkan/commit.hpp"
 #include "voxray/vulkan/device.hpp"
@@ -95,8 +96,7 @@ public:
         std::swap(slice_, o.slice_);
         std::swap(pipeline_seconds_, o.pipeline_seconds_);
         std::swap(blob_words_, o.blob_words_);
-        std::swap(last_bytes_, o.last_bytes_);
-        std::swap(total_bytes_, o.total_bytes_);
+        std::swap(ledger_, o.ledger_);
         return *this;
     }
 
@@ -108,7 +108,7 @@ public:
             blob_ = buffer(*ctx_, bytes, buffer_role::storage_upload, !options_.force_staging, "structure blob");
         }
         blob_words_ = blob.size();
-        count_upload(blob.size_bytes());
+        ledger_.count(blob.size_bytes());
         if (blob_.mapped()) {
             std::memcpy(blob_.mapped(), blob.data(), blob.size_bytes());
             return;  // host writes before vkQueueSubmit are visible to the device
@@ -135,11 +135,11 @@ public:
     // uploaded, else (or when the packet would not be smaller than the blob) the whole
     // blob is uploaded instead.
     void update_ranges(std::span<const std::uint32_t> blob, std::span<const word_range> ranges) {
-        if (!blob_.handle() || blob.size() != blob_words_) return upload(blob);
-        std::vector<word_range> merged = sync::normalize_ranges(ranges, blob.size());
-        if (merged.empty()) return count_upload(0);
-        if (sync::packet_words(merged.size(), sync::total_words(merged)) >= blob.size()) return upload(blob);
-        count_upload(committer_.commit(*ctx_, *commands_, blob_, blob, merged, !options_.force_staging));
+        auto plan = sync::plan_upload(blob_.handle() ? blob_words_ : 0, blob, ranges);
+        if (plan.what == sync::upload_plan::whole) return upload(blob);
+        ledger_.count(plan.what == sync::upload_plan::nothing
+                          ? 0
+                          : committer_.commit(*ctx_, *commands_, blob_, blob, plan.ranges, !options_.force_staging));
     }
 
     // The blob grew and kept every old word in place (tracer.hpp, grows_in_place): the old
@@ -170,8 +170,8 @@ public:
     }
 
     // Bytes the last upload or update sent to the device, and their running total.
-    std::uint64_t bytes_uploaded_last_update() const { return last_bytes_; }
-    std::uint64_t bytes_uploaded_total() const { return total_bytes_; }
+    std::uint64_t bytes_uploaded_last_update() const { return ledger_.last(); }
+    std::uint64_t bytes_uploaded_total() const { return ledger_.total(); }
 
     // For tests and diagnostics: reads the device blob back (as many words as were last
     // uploaded), to compare word for word with the host's.
@@ -270,10 +270,6 @@ public:
     double pipeline_seconds() const { return pipeline_seconds_; }
 
 private:
-    void count_upload(std::uint64_t bytes) {
-        last_bytes_ = bytes;
-        total_bytes_ += bytes;
-    }
 
     // Grow-only ray/hit buffers (and their staging twins where they are not mapped).
     void reserve(std::size_t count) {
@@ -363,7 +359,7 @@ private:
     std::size_t slice_ = max_slice_rays;
     double pipeline_seconds_ = 0;
     std::size_t blob_words_ = 0;
-    std::uint64_t last_bytes_ = 0, total_bytes_ = 0;
+    sync::upload_ledger ledger_;
 };
 
 }  // namespace voxray::vulkan_detail
