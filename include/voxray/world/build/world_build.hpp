@@ -16,6 +16,7 @@
 #include <chrono>
 #include <cstdint>
 #include <filesystem>
+#include <functional>
 #include <mutex>
 #include <set>
 #include <vector>
@@ -35,6 +36,10 @@ struct world_build_options {
     float colour_error = 0.05f;
     int density = 2;
     unsigned threads = 0;  // 0: all hardware threads
+    // Called once every chunk file is written and before the manifest is: files of the
+    // caller's own (shading hints, say) go here, so that a folder with a manifest has them
+    // all. A throw leaves the build unfinished (no manifest).
+    std::function<void(const std::filesystem::path& dir)> before_manifest;
 };
 
 struct world_build_report {
@@ -158,6 +163,7 @@ world_build_report build_world(const Source& source, const std::filesystem::path
         });
     }
     m.sort();
+    if (o.before_manifest) o.before_manifest(dir);
     write_manifest(dir, m);
     report.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     return report;
