@@ -28,7 +28,9 @@ export VOXRAY_REQUIRE_ALL_BACKENDS=1
 CPU_LABELS='^(cpu|io|mesh|malformed|brickmap|naadf|svdag|world|sync|conformance|nanovdb)$'
 GPU_LABELS='^(opencl|vulkan)$'
 # Sanitizer builds: -O1 with line tables only, which compiles about twice as fast as -O2 -g.
-SANITIZED=(-DCMAKE_BUILD_TYPE=RelWithDebInfo "-DCMAKE_CXX_FLAGS_RELWITHDEBINFO=-O1 -g1 -DNDEBUG" -DVOXRAY_BUILD_TOOLS=OFF)
+# PoCL's cache is the main build's: its kernels are compiled already.
+SANITIZED=(-DCMAKE_BUILD_TYPE=RelWithDebInfo "-DCMAKE_CXX_FLAGS_RELWITHDEBINFO=-O1 -g1 -DNDEBUG" -DVOXRAY_BUILD_TOOLS=OFF
+           "-DVOXRAY_POCL_CACHE_DIR=$(cd "$BUILD_DIR" && pwd)/pocl-cache")
 export LSAN_OPTIONS="suppressions=$ROOT/scripts/lsan.supp"
 
 tsan_pass() {

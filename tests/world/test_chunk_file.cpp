@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "random_models.hpp"
+#include "temp_dir.hpp"
 #include "voxray/core/checksum.hpp"
 #include "voxray/svdag/builder.hpp"
 #include "voxray/svdag/validate.hpp"
@@ -30,21 +31,6 @@ using namespace voxray::test;
 using bytes = std::vector<unsigned char>;
 
 // A fresh folder per test, removed at the end.
-struct temp_dir {
-    fs::path path;
-    temp_dir() {
-        auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-        path = fs::temp_directory_path() /
-               ("voxray_chunk_" + std::string(info->name()) + "_" + std::to_string(::getpid()));
-        fs::remove_all(path);
-        fs::create_directories(path);
-    }
-    ~temp_dir() {
-        std::error_code ec;
-        fs::remove_all(path, ec);
-    }
-};
-
 bytes read_bytes(const fs::path& p) {
     std::ifstream in(p, std::ios::binary);
     return bytes(std::istreambuf_iterator<char>(in), {});
@@ -250,7 +236,8 @@ TEST(chunk_file, wrong_fields_under_a_valid_checksum_are_errors_at_their_offset)
         {28, std::uint32_t(-1), "solid min -1 is outside [0, 32)"},
         {48, 32, "solid max 32 is outside [0, 32)"},
         {56, voxels + 1, "does not match the DAG root's count"},
-        {56, 0, "but the solid box is not empty"},
+        {56, 0, "words is outside [24, 56], the most a DAG of 0 voxels in a chunk of 2^5 a side can need", 64},
+        {56, 32 * 32 * 32 + 1, "voxel count 32769 is more than the chunk's 32768 voxels"},
         {80 + 4 * VX_SV_HEADER_ORIGIN, 16, "DAG origin 16 (expected 0)"},
         {80 + 4 * (VX_SV_HEADER_SHIFT + 2), 1, "DAG shift 1 (expected 0)"},
         {80 + 4 * (VX_SV_HEADER_EXTENT + 1), 31, "DAG extent 31 (expected 32)"},

@@ -17,6 +17,7 @@
 
 #include "hit_bits.hpp"
 #include "random_models.hpp"
+#include "temp_dir.hpp"
 #include "special_rays.hpp"
 #include "test_data.hpp"
 #include "voxray/check/compare.hpp"
@@ -41,16 +42,6 @@ namespace {
 
 namespace fs = std::filesystem;
 using namespace voxray::test;
-
-struct temp_dir {
-    fs::path path;
-    temp_dir() {
-        auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-        path = fs::temp_directory_path() / ("voxray_world_" + std::string(info->name()) + "_" + std::to_string(::getpid()));
-        fs::remove_all(path);
-    }
-    ~temp_dir() { fs::remove_all(path); }
-};
 
 world_build_options small_chunks(unsigned threads = 2) {
     world_build_options o;
@@ -135,6 +126,7 @@ TEST(world_build, resumes_an_interrupted_build_and_rebuilds_what_is_missing_or_c
     // Other options are another build: nothing is kept.
     world_build_options other = small_chunks();
     other.density = 3;
+    other.replace = true;  // (refused otherwise: test_world_files)
     auto third = build_world(model_source(model), dir.path, other);
     for (auto& l : third.lods) EXPECT_EQ(l.resumed, 0u);
 }

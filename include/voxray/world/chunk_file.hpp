@@ -16,12 +16,14 @@
 //       72     8  checksum: FNV-1a 64 over bytes 0..71 and every DAG word
 //       80        DAG words (svdag/layout.h)
 //
-// The files are untrusted: a GPU kernel walks the DAG's pointers. A read checks the size
-// before anything is allocated, the checksum before the content is parsed, then every
+// The files are untrusted: a GPU kernel walks the DAG's pointers. A read checks the sizes
+// (the DAG's against what its voxel count can need, the file's against the DAG's) before
+// anything is allocated, the checksum before the content is parsed, then every
 // field and the DAG's structure (svdag/validate.hpp). Every failure is a voxray::error
 // naming the file, the byte offset and the value. A write goes to path + ".tmp" and is
 // renamed into place, so a killed writer never leaves a half file under the real name.
 #pragma once
+#include <algorithm>
 #include <bit>
 #include <cstdint>
 #include <cstring>
@@ -72,6 +74,18 @@ inline std::uint64_t checksum(const unsigned char* header, const blob_words& dag
     sum.bytes(header, chunk_file_offset::checksum);
     sum.words(dag.data(), dag.size());
     return sum.h;
+}
+
+// The most words a chunk's DAG can need for its voxel count: the header, at most
+// min(8^d, voxels) nodes of 2 + 8 words on each interior level d, as many leaves of 2
+// words on the leaf level, and 2 words of attributes a voxel (colour blocks' start and
+// colour; exact payloads need a quarter). A size past it is a lie, refused before
+// anything is allocated for it.
+inline std::uint64_t dag_word_limit(int chunk_bits, std::uint64_t voxels) {
+    std::uint64_t words = VX_SV_HEADER_WORDS + 2 * voxels, level = 1, nodes = std::max<std::uint64_t>(voxels, 1);
+    for (int d = 0; d <= chunk_bits - VX_SV_LEAF_EDGE_BITS; ++d, level *= 8)
+        words += (d < chunk_bits - VX_SV_LEAF_EDGE_BITS ? VX_SV_NODE_CHILDREN + 8 : VX_SV_LEAF_WORDS) * std::min(level, nodes);
+    return words;
 }
 
 }  // namespace chunk_file_detail
@@ -143,13 +157,26 @@ inline chunk_record read_chunk_file(const std::filesystem::path& path, int expec
         bad(off::magic, "bad magic ", get32(h, off::magic), " (expected ", chunk_file_magic, ", \"VXCK\")");
     if (get32(h, off::version) != chunk_file_version)
         bad(off::version, "unsupported version ", get32(h, off::version), " (this build reads version ", chunk_file_version, ")");
+    // The sizes before any allocation: the DAG's against what its voxel count can need,
+    // the file's against the DAG's (a sparse file may claim gigabytes it does not hold).
+    auto signed32 = [&](std::size_t at) { return std::int32_t(get32(h, at)); };
+    chunk_record c;
+    c.chunk_bits = signed32(off::chunk_bits);
+    if (c.chunk_bits < chunk_min_bits || c.chunk_bits > chunk_max_bits)
+        bad(off::chunk_bits, "chunk_bits ", c.chunk_bits, " is outside [", chunk_min_bits, ", ", chunk_max_bits, "]");
+    if (expected_chunk_bits >= 0 && c.chunk_bits != expected_chunk_bits)
+        bad(off::chunk_bits, "chunk_bits ", c.chunk_bits, " (expected ", expected_chunk_bits, ", the world's chunk size)");
+    c.voxel_count = get64(h, off::voxel_count);
+    const std::uint64_t cube = std::uint64_t(1) << (3 * c.chunk_bits);
+    if (c.voxel_count > cube) bad(off::voxel_count, "voxel count ", c.voxel_count, " is more than the chunk's ", cube, " voxels");
     std::uint64_t words = get64(h, off::dag_words);
-    if (words < VX_SV_HEADER_WORDS || words >= max_blob_words)
-        bad(off::dag_words, "DAG size of ", words, " words is outside [", VX_SV_HEADER_WORDS, ", ", max_blob_words, ")");
+    std::uint64_t limit = std::min<std::uint64_t>(dag_word_limit(c.chunk_bits, c.voxel_count), max_blob_words - 1);
+    if (words < VX_SV_HEADER_WORDS || words > limit)
+        bad(off::dag_words, "DAG size of ", words, " words is outside [", VX_SV_HEADER_WORDS, ", ", limit,
+            "], the most a DAG of ", c.voxel_count, " voxels in a chunk of 2^", c.chunk_bits, " a side can need");
     std::uint64_t expected_size = chunk_file_header_bytes + 4 * words;
     if (size != expected_size)
         bad(off::dag_words, "file is ", size, " bytes; a DAG of ", words, " words needs ", expected_size);
-    chunk_record c;
     c.dag.resize(words);
     if (!in.read(reinterpret_cast<char*>(c.dag.data()), std::streamsize(words * 4))) fail("chunk file ", name, ": read failed");
     std::uint64_t sum = checksum(h, c.dag);
@@ -157,14 +184,8 @@ inline chunk_record read_chunk_file(const std::filesystem::path& path, int expec
         bad(off::checksum, "checksum ", get64(h, off::checksum), " does not match the content's ", sum);
 
     // Fields.
-    auto signed32 = [&](std::size_t at) { return std::int32_t(get32(h, at)); };
     c.key.lod = signed32(off::lod);
     if (c.key.lod < 0 || c.key.lod > chunk_max_lod) bad(off::lod, "lod ", c.key.lod, " is outside [0, ", chunk_max_lod, "]");
-    c.chunk_bits = signed32(off::chunk_bits);
-    if (c.chunk_bits < chunk_min_bits || c.chunk_bits > chunk_max_bits)
-        bad(off::chunk_bits, "chunk_bits ", c.chunk_bits, " is outside [", chunk_min_bits, ", ", chunk_max_bits, "]");
-    if (expected_chunk_bits >= 0 && c.chunk_bits != expected_chunk_bits)
-        bad(off::chunk_bits, "chunk_bits ", c.chunk_bits, " (expected ", expected_chunk_bits, ", the world's chunk size)");
     const int edge = 1 << c.chunk_bits;
     bool empty = false;
     for (int a = 0; a < 3; ++a) {
@@ -174,7 +195,6 @@ inline chunk_record read_chunk_file(const std::filesystem::path& path, int expec
         empty |= c.solid_max[a] < c.solid_min[a];
     }
     c.source_hash = get32(h, off::source_hash);
-    c.voxel_count = get64(h, off::voxel_count);
     if (!empty)
         for (int a = 0; a < 3; ++a) {
             if (c.solid_min[a] < 0)

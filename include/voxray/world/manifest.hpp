@@ -89,6 +89,38 @@ T get(const std::vector<unsigned char>& b, std::size_t at) {
     std::memcpy(&v, b.data() + at, sizeof v);
     return v;
 }
+
+// Cells of every LOD of the grid: no world has more chunks.
+inline std::uint64_t chunk_cells(const world_grid& g) {
+    std::uint64_t n = 0;
+    for (int lod = 0; lod <= g.top_lod; ++lod) {
+        std::uint64_t level = 1;
+        for (int a = 0; a < 3; ++a) level *= (std::uint64_t(g.cells[a]) + (std::uint64_t(1) << lod) - 1) >> lod;
+        n += level;
+    }
+    return n;
+}
+
+// The grid as world_grid::fit makes it, which the walk's arithmetic relies on: an origin
+// on the top LOD's chunk grid, every voxel's coordinate within 32 bits, at most 2 chunks
+// a side at the top LOD, and bounds inside the grid (or an empty world).
+template <class Check>
+void check_grid(const world_manifest& m, Check&& check) {
+    const world_grid& g = m.grid;
+    const std::int64_t region = std::int64_t(1) << (g.chunk_bits + g.top_lod), edge = std::int64_t(1) << g.chunk_bits;
+    for (int a = 0; a < 3; ++a) {
+        std::size_t at = 16 + 4 * std::size_t(a);
+        std::int64_t lo = g.origin[a], hi = lo + edge * g.cells[a];
+        check(lo % region == 0, at, lo, "an origin on the top LOD's chunk grid");
+        check(hi <= INT32_MAX, at, lo, "a grid whose far corner fits 32 bits");
+        check(((std::int64_t(g.cells[a]) + (std::int64_t(1) << g.top_lod) - 1) >> g.top_lod) <= 2, 28 + 4 * std::size_t(a),
+              g.cells[a], "at most 2 chunks a side at the top LOD");
+        if (m.bounds.empty()) continue;
+        check(m.bounds.min[a] >= lo && m.bounds.min[a] < hi, 40 + 4 * std::size_t(a), m.bounds.min[a], "bounds inside the grid");
+        check(m.bounds.max[a] > lo && m.bounds.max[a] <= hi, 52 + 4 * std::size_t(a), m.bounds.max[a], "bounds inside the grid");
+    }
+}
+
 }  // namespace manifest_detail
 
 inline void write_manifest(const std::filesystem::path& dir, const world_manifest& m) {
@@ -123,12 +155,18 @@ inline void write_manifest(const std::filesystem::path& dir, const world_manifes
     std::filesystem::create_directories(dir);
     auto tmp = manifest_path(dir);
     tmp += ".tmp";
+    std::error_code ec;
     {
         std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
         out.write(reinterpret_cast<const char*>(b.data()), std::streamsize(b.size()));
-        if (!out) fail("world manifest ", tmp.string(), ": write failed");
+        out.close();  // a full disk shows here, when the buffer is flushed
+        if (!out) {
+            std::filesystem::remove(tmp, ec);
+            fail("world manifest ", tmp.string(), ": write failed (", b.size(), " bytes; is the disk full?)");
+        }
     }
-    std::filesystem::rename(tmp, manifest_path(dir));
+    std::filesystem::rename(tmp, manifest_path(dir), ec);
+    if (ec) fail("world manifest ", manifest_path(dir).string(), ": cannot rename ", tmp.string(), " into place (", ec.message(), ")");
 }
 
 inline world_manifest read_manifest(const std::filesystem::path& dir) {
@@ -146,8 +184,34 @@ inline world_manifest read_manifest(const std::filesystem::path& dir) {
         fail("world manifest ", name, ": offset 0: magic ", get<std::uint32_t>(head, 0), " is not VXWM");
     if (get<std::uint32_t>(head, 4) != manifest_version)
         fail("world manifest ", name, ": offset 4: version ", get<std::uint32_t>(head, 4), ", this reader knows ", manifest_version);
-    std::uint64_t n = get<std::uint64_t>(head, 80);
-    if (n > (size - manifest_header_bytes) / manifest_chunk_bytes || size != manifest_header_bytes + manifest_chunk_bytes * n)
+    // The header's fields first (they bound the chunk count), then the size, before the
+    // table is allocated: a sparse file may claim gigabytes it does not hold.
+    world_manifest m;
+    m.grid.chunk_bits = get<std::int32_t>(head, 8);
+    m.grid.top_lod = get<std::int32_t>(head, 12);
+    for (int a = 0; a < 3; ++a) {
+        m.grid.origin[a] = get<std::int32_t>(head, 16 + 4 * std::size_t(a));
+        m.grid.cells[a] = get<std::int32_t>(head, 28 + 4 * std::size_t(a));
+        m.bounds.min[a] = get<std::int32_t>(head, 40 + 4 * std::size_t(a));
+        m.bounds.max[a] = get<std::int32_t>(head, 52 + 4 * std::size_t(a));
+    }
+    auto check = [&](bool ok, std::size_t offset, auto value, const char* expected) {
+        if (!ok) fail("world manifest ", name, ": offset ", offset, ": ", value, " (expected ", expected, ")");
+    };
+    check(m.grid.chunk_bits >= VX_WD_MIN_CHUNK_BITS && m.grid.chunk_bits <= VX_WD_MAX_CHUNK_BITS, 8, m.grid.chunk_bits, "chunk_bits in [4, 10]");
+    check(m.grid.top_lod >= 0 && m.grid.top_lod <= VX_WD_MAX_LOD, 12, m.grid.top_lod, "top_lod in [0, 20]");
+    for (int a = 0; a < 3; ++a) check(m.grid.cells[a] >= 1 && m.grid.cells[a] <= (1 << 20), 28 + 4 * std::size_t(a), m.grid.cells[a], "cells in [1, 2^20]");
+    manifest_detail::check_grid(m, check);
+    std::uint32_t kind = get<std::uint32_t>(head, 64);
+    check(kind <= 1u, 64, kind, "0 (exact) or 1 (colour blocks)");
+    m.attributes = kind == 0u ? svdag_attributes::exact : svdag_attributes::colour_blocks;
+    m.colour_error = get<float>(head, 68);
+    m.density = get<std::int32_t>(head, 72);
+    check(m.density >= 1 && m.density <= 8, 72, m.density, "density in [1, 8]");
+    m.source_hash = get<std::uint32_t>(head, 76);
+    std::uint64_t n = get<std::uint64_t>(head, 80), cells = manifest_detail::chunk_cells(m.grid);
+    check(n <= cells, 80, n, "at most one chunk per cell of every LOD");
+    if (size != manifest_header_bytes + manifest_chunk_bytes * n)
         fail("world manifest ", name, ": offset 80: ", n, " chunks do not match the file size ", size);
     std::vector<unsigned char> b(std::size_t(size), 0);
     std::copy(head.begin(), head.end(), b.begin());
@@ -158,28 +222,7 @@ inline world_manifest read_manifest(const std::filesystem::path& dir) {
     sum.bytes(b.data() + manifest_header_bytes, b.size() - manifest_header_bytes);
     if (sum.h != get<std::uint64_t>(b, 88)) fail("world manifest ", name, ": offset 88: checksum mismatch (the file is corrupt)");
 
-    world_manifest m;
-    m.grid.chunk_bits = get<std::int32_t>(b, 8);
-    m.grid.top_lod = get<std::int32_t>(b, 12);
-    for (int a = 0; a < 3; ++a) {
-        m.grid.origin[a] = get<std::int32_t>(b, 16 + 4 * std::size_t(a));
-        m.grid.cells[a] = get<std::int32_t>(b, 28 + 4 * std::size_t(a));
-        m.bounds.min[a] = get<std::int32_t>(b, 40 + 4 * std::size_t(a));
-        m.bounds.max[a] = get<std::int32_t>(b, 52 + 4 * std::size_t(a));
-    }
-    auto check = [&](bool ok, std::size_t offset, auto value, const char* expected) {
-        if (!ok) fail("world manifest ", name, ": offset ", offset, ": ", value, " (expected ", expected, ")");
-    };
-    check(m.grid.chunk_bits >= VX_WD_MIN_CHUNK_BITS && m.grid.chunk_bits <= VX_WD_MAX_CHUNK_BITS, 8, m.grid.chunk_bits, "chunk_bits in [4, 10]");
-    check(m.grid.top_lod >= 0 && m.grid.top_lod <= VX_WD_MAX_LOD, 12, m.grid.top_lod, "top_lod in [0, 20]");
-    for (int a = 0; a < 3; ++a) check(m.grid.cells[a] >= 1 && m.grid.cells[a] <= (1 << 20), 28 + 4 * std::size_t(a), m.grid.cells[a], "cells in [1, 2^20]");
-    std::uint32_t kind = get<std::uint32_t>(b, 64);
-    check(kind <= 1u, 64, kind, "0 (exact) or 1 (colour blocks)");
-    m.attributes = kind == 0u ? svdag_attributes::exact : svdag_attributes::colour_blocks;
-    m.colour_error = get<float>(b, 68);
-    m.density = get<std::int32_t>(b, 72);
-    check(m.density >= 1 && m.density <= 8, 72, m.density, "density in [1, 8]");
-    m.source_hash = get<std::uint32_t>(b, 76);
+    const std::uint64_t cube = std::uint64_t(1) << (3 * m.grid.chunk_bits);
     m.chunks.resize(std::size_t(n));
     for (std::size_t i = 0; i < n; ++i) {
         std::size_t at = manifest_header_bytes + manifest_chunk_bytes * i;
@@ -193,8 +236,42 @@ inline world_manifest read_manifest(const std::filesystem::path& dir) {
         for (int a = 0; a < 3; ++a)
             check(c.key.cell[a] >= 0 && c.key.cell[a] < limit[a], at + 4 + 4 * std::size_t(a), c.key.cell[a], "a cell inside the grid");
         check(i == 0 || chunk_key_less{}(m.chunks[i - 1].key, c.key), at, i, "chunks sorted and unique");
+        check(c.voxel_count >= 1 && c.voxel_count <= cube, at + 16, c.voxel_count, "solid voxels in [1, chunk volume]");
+        check(c.file_bytes >= chunk_file_header_bytes + 4 * VX_SV_HEADER_WORDS && c.file_bytes % 4 == 0 &&
+                  c.file_bytes <= chunk_file_header_bytes + 4 * chunk_file_detail::dag_word_limit(m.grid.chunk_bits, c.voxel_count),
+              at + 24, c.file_bytes, "the size of a chunk file of that many voxels");
     }
     return m;
+}
+
+// A chunk the manifest lists, read from its folder and checked against the manifest: its
+// size before anything is read (the manifest's file_bytes), then after the reader's own
+// checks its key, build (source hash), voxel count and attribute kind, so that a chunk
+// file of another build or another world is an error naming it, never shown.
+inline chunk_record read_listed_chunk(const std::filesystem::path& dir, const world_manifest& m, const chunk_key& k) {
+    auto path = chunk_file_path(dir, k);
+    std::string name = path.string();
+    const manifest_chunk* listed = m.find(k);
+    if (!listed) fail("chunk file ", name, ": the world's manifest lists no such chunk");
+    std::error_code ec;
+    std::uint64_t size = std::filesystem::file_size(path, ec);
+    if (ec) fail("chunk file ", name, ": cannot read (", ec.message(), ")");
+    if (size != listed->file_bytes)
+        fail("chunk file ", name, ": ", size, " bytes, but the manifest lists ", listed->file_bytes, " (a file of another build?)");
+    chunk_record c = read_chunk_file(path, m.grid.chunk_bits);
+    auto differs = [&](std::size_t offset, const char* what, auto has, auto listed_value) {
+        fail("chunk file ", name, ": offset ", offset, ": ", what, " ", has, ", but the manifest's is ", listed_value,
+             " (a file of another build?)");
+    };
+    if (!(c.key == k))
+        fail("chunk file ", name, ": holds chunk (LOD ", c.key.lod, ", ", c.key.cell.x, " ", c.key.cell.y, " ", c.key.cell.z,
+             "), not the one its name says");
+    if (c.source_hash != m.source_hash) differs(chunk_file_offset::source_hash, "source hash", c.source_hash, m.source_hash);
+    if (c.voxel_count != listed->voxel_count) differs(chunk_file_offset::voxel_count, "voxel count", c.voxel_count, listed->voxel_count);
+    std::uint32_t kind = m.attributes == svdag_attributes::exact ? VX_SV_ATTRIBUTES_EXACT : VX_SV_ATTRIBUTES_COLOUR_BLOCKS;
+    if (c.dag[VX_SV_HEADER_ATTRIBUTE_KIND] != kind)
+        differs(chunk_file_header_bytes + 4 * VX_SV_HEADER_ATTRIBUTE_KIND, "attribute kind", c.dag[VX_SV_HEADER_ATTRIBUTE_KIND], kind);
+    return c;
 }
 
 }  // namespace voxray

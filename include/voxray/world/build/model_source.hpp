@@ -50,8 +50,16 @@ public:
         h.bytes(&repeat_, sizeof repeat_);
         return std::uint32_t(h.h ^ (h.h >> 32));
     }
-    // Cells any copy's model chunks fall in.
+    // Cells any copy's model chunks fall in. Their list costs memory per copy and model
+    // chunk, so a tiling past max_copy_chunks is refused before it is made.
+    static constexpr std::uint64_t max_copy_chunks = std::uint64_t(1) << 25;
     std::vector<glm::ivec3> cells(const world_grid& g) const {
+        std::uint64_t chunks = 0;
+        model_->for_each_chunk([&](glm::ivec3, const voxel_model::chunk&) { ++chunks; });
+        std::uint64_t copies = std::uint64_t(repeat_.x) * std::uint64_t(repeat_.y) * std::uint64_t(repeat_.z);
+        if (copies * chunks > max_copy_chunks)
+            fail("model source: ", repeat_.x, " x ", repeat_.y, " x ", repeat_.z, " copies of ", chunks, " model chunks are ",
+                 copies * chunks, " copy chunks to place, more than the limit of ", max_copy_chunks, ": tile fewer copies");
         std::set<glm::ivec3, ivec3_less> out;
         for_each_copy([&](glm::ivec3 shift) {
             model_->for_each_chunk([&](glm::ivec3 origin, const voxel_model::chunk&) {
@@ -64,11 +72,12 @@ public:
         });
         return {out.begin(), out.end()};
     }
-    // The cell's voxels: those of every copy's model chunks that overlap the cell.
+    // The cell's voxels: those of the model chunks that overlap the cell, of the copies
+    // that can reach it (a few per axis, however many copies there are).
     chunk_voxels voxels(const world_grid& g, glm::ivec3 cell, bool colours) const {
         chunk_voxels out;
         box3i cell_box{g.origin + (cell << g.chunk_bits), g.origin + ((cell + 1) << g.chunk_bits)};
-        for_each_copy([&](glm::ivec3 shift) {
+        for_each_copy_over(cell_box, [&](glm::ivec3 shift) {
             model_->for_each_chunk([&](glm::ivec3 origin, const voxel_model::chunk& c) {
                 glm::ivec3 lo = origin + shift;
                 if (glm::any(glm::greaterThanEqual(lo, cell_box.max)) ||
@@ -93,6 +102,25 @@ private:
         for (int k = 0; k < repeat_.z; ++k)
             for (int j = 0; j < repeat_.y; ++j)
                 for (int i = 0; i < repeat_.x; ++i) f(tile_ * glm::ivec3(i, j, k));
+    }
+    // The copies whose model chunks (which may reach a chunk edge past the model's
+    // bounds on either side) can overlap `box`.
+    template <class F>
+    void for_each_copy_over(const box3i& box, F&& f) const {
+        glm::ivec3 first(0), last(0);
+        box3i b = model_->bounds();
+        for (int a = 0; a < 3; ++a) {
+            if (tile_[a] <= 0) return;
+            std::int64_t reach_lo = std::int64_t(b.min[a]) - voxel_model::chunk_edge;   // below any chunk's min
+            std::int64_t reach_hi = std::int64_t(b.max[a]) + voxel_model::chunk_edge;   // above any chunk's max
+            auto floor_div = [](std::int64_t x, std::int64_t d) { return x >= 0 ? x / d : -((d - 1 - x) / d); };
+            // copy i overlaps when reach_lo + tile * i < box.max and reach_hi + tile * i > box.min
+            first[a] = int(std::max<std::int64_t>(0, floor_div(box.min[a] - reach_hi, tile_[a])));
+            last[a] = int(std::min<std::int64_t>(repeat_[a] - 1, floor_div(box.max[a] - reach_lo, tile_[a])));
+        }
+        for (int k = first.z; k <= last.z; ++k)
+            for (int j = first.y; j <= last.y; ++j)
+                for (int i = first.x; i <= last.x; ++i) f(tile_ * glm::ivec3(i, j, k));
     }
 
     const voxel_model* model_;

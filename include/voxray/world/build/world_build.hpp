@@ -3,7 +3,10 @@
 // world/build/mesh_source.hpp), then each LOD from the files of the one below (decoded, 8 at a
 // time). Every chunk is one independent job (the unit a batch engine would distribute);
 // jobs run on all threads; a chunk file already there with the same source hash is kept,
-// so a build that was interrupted resumes where it stopped. The manifest is written last.
+// so a build that was interrupted resumes where it stopped. The manifest is written last;
+// then the chunk files it does not list (an earlier world's) are removed. A lock keeps a
+// second build out of the folder, and a finished world of another source is replaced
+// only when asked (world_build_options::replace).
 //
 // A source offers
 //   box3i bounds() const;                                   // of its solid voxels
@@ -11,7 +14,14 @@
 //   std::vector<glm::ivec3> cells(const world_grid&) const; // the cells that may hold voxels
 //   chunk_voxels voxels(const world_grid&, glm::ivec3 cell, bool colours) const;  // thread-safe
 #pragma once
+#include <fcntl.h>
+#include <sys/file.h>
+#include <unistd.h>
+
 #include <algorithm>
+#include <cerrno>
+#include <cstdio>
+#include <cstring>
 #include <atomic>
 #include <chrono>
 #include <cstdint>
@@ -30,6 +40,14 @@
 
 namespace voxray {
 
+// Where a build is: chunks done of the LOD under way (the number of LODs is known only
+// when LOD 0 is done), and the time since the build began.
+struct world_build_progress {
+    int lod = 0, top_lod = 0;
+    std::uint64_t done = 0, total = 0;  // chunk jobs of this LOD
+    double seconds = 0;
+};
+
 struct world_build_options {
     int chunk_bits = 8;
     svdag_attributes attributes = svdag_attributes::exact;
@@ -40,6 +58,11 @@ struct world_build_options {
     // caller's own (shading hints, say) go here, so that a folder with a manifest has them
     // all. A throw leaves the build unfinished (no manifest).
     std::function<void(const std::filesystem::path& dir)> before_manifest;
+    // A folder that holds a finished world of another source or other options is
+    // refused unless this is set; then the new world replaces it.
+    bool replace = false;
+    // Called after each chunk (from the build threads, one call at a time).
+    std::function<void(const world_build_progress&)> progress;
 };
 
 struct world_build_report {
@@ -80,6 +103,51 @@ inline bool resumable(const std::filesystem::path& path, std::uint32_t hash, int
     }
 }
 
+// One build at a time in a folder: two would write the same .tmp names and mix their
+// chunks. An advisory lock (flock) on a file in the folder, released when the build ends
+// or its process dies.
+class folder_lock {
+public:
+    explicit folder_lock(const std::filesystem::path& dir) {
+        auto path = dir / ".voxray-build.lock";
+        fd_ = ::open(path.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
+        if (fd_ < 0) fail("world build: cannot open ", path.string(), " (", std::strerror(errno), ")");
+        if (::flock(fd_, LOCK_EX | LOCK_NB) != 0) {
+            int e = errno;
+            ::close(fd_);
+            if (e == EWOULDBLOCK)
+                fail("world build: ", dir.string(), " is being built by another process (it holds ", path.string(), ")");
+            fail("world build: cannot lock ", path.string(), " (", std::strerror(e), ")");
+        }
+    }
+    ~folder_lock() { ::close(fd_); }
+    folder_lock(const folder_lock&) = delete;
+    folder_lock& operator=(const folder_lock&) = delete;
+
+private:
+    int fd_ = -1;
+};
+
+// Chunk files (and .tmp files of killed writes) the manifest does not list: what an
+// earlier world in the folder left. Removed once the new manifest is in place.
+inline void remove_unlisted_chunks(const std::filesystem::path& dir, const world_manifest& m) {
+    std::error_code ec;
+    for (int lod = 0; lod <= chunk_max_lod; ++lod) {
+        auto folder = dir / ("lod" + std::to_string(lod));
+        if (!std::filesystem::is_directory(folder, ec)) continue;
+        for (auto& entry : std::filesystem::directory_iterator(folder, ec)) {
+            auto name = entry.path().filename().string();
+            bool chunk = name.ends_with(".vxck"), tmp = name.ends_with(".vxck.tmp");
+            if (!chunk && !tmp) continue;  // not ours
+            glm::ivec3 cell;
+            bool listed = chunk && std::sscanf(name.c_str(), "%d_%d_%d.vxck", &cell.x, &cell.y, &cell.z) == 3 &&
+                          m.find({lod, cell}) && chunk_file_path(dir, {lod, cell}) == entry.path();
+            if (!listed) std::filesystem::remove(entry.path(), ec);
+        }
+        if (std::filesystem::is_empty(folder, ec)) std::filesystem::remove(folder, ec);
+    }
+}
+
 }  // namespace world_build_detail
 
 template <class Source>
@@ -98,8 +166,20 @@ world_build_report build_world(const Source& source, const std::filesystem::path
     if (o.density < 1 || o.density > 8) fail("world build: density ", o.density, " is outside [1, 8]");
     bool colours = o.attributes == svdag_attributes::colour_blocks;
     chunk_dag_options dag{o.attributes, o.colour_error};
-    std::filesystem::remove(manifest_path(dir));  // an unfinished build has none
     std::filesystem::create_directories(dir);
+    folder_lock lock(dir);
+    if (!o.replace && std::filesystem::exists(manifest_path(dir))) {
+        std::uint32_t there = 0;
+        try {
+            there = read_manifest(dir).source_hash;
+        } catch (const error&) {
+            there = ~m.source_hash;  // unreadable: treat as another world
+        }
+        if (there != m.source_hash)
+            fail("world build: ", dir.string(), " holds another world (source hash ", there, ", this build's ", m.source_hash,
+                 "): build into another folder, or replace it");
+    }
+    std::filesystem::remove(manifest_path(dir));  // an unfinished build has none
 
     world_build_report report;
     std::mutex mutex;  // guards m.chunks and the report while jobs run
@@ -108,6 +188,7 @@ world_build_report build_world(const Source& source, const std::filesystem::path
         auto level_start = std::chrono::steady_clock::now();
         world_build_report::level stats;
         std::atomic<std::size_t> next{0};
+        std::uint64_t done = 0;
         unsigned threads = resolve_build_threads(o.threads, cells.size());
         run_build_threads(threads, [&](unsigned) {
             for (std::size_t i; (i = next.fetch_add(1)) < cells.size();) {
@@ -118,11 +199,17 @@ world_build_report build_world(const Source& source, const std::filesystem::path
                 if (!resumed) {
                     c = make(key);
                     c.source_hash = m.source_hash;
-                    if (c.empty()) continue;
-                    write_chunk_file(path, c);
                 }
-                std::uint64_t bytes = std::filesystem::file_size(path);
+                std::uint64_t bytes = 0;
+                if (!c.empty()) {
+                    if (!resumed) write_chunk_file(path, c);
+                    bytes = std::filesystem::file_size(path);
+                }
                 std::lock_guard lock(mutex);
+                if (o.progress)
+                    o.progress({lod, m.grid.top_lod, ++done, cells.size(),
+                                std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count()});
+                if (c.empty()) continue;
                 m.chunks.push_back({key, c.voxel_count, bytes});
                 ++stats.chunks;
                 stats.voxels += c.voxel_count;
@@ -165,6 +252,7 @@ world_build_report build_world(const Source& source, const std::filesystem::path
     m.sort();
     if (o.before_manifest) o.before_manifest(dir);
     write_manifest(dir, m);
+    remove_unlisted_chunks(dir, m);
     report.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     return report;
 }

@@ -10,6 +10,7 @@
 #include <condition_variable>
 #include <cstdint>
 #include <deque>
+#include <exception>
 #include <filesystem>
 #include <map>
 #include <memory>
@@ -47,7 +48,13 @@ public:
         : dir_(std::move(dir)), options_(options), manifest_(read_manifest(dir_)), tree_(manifest_) {
         for (auto& c : manifest_.chunks)
             if (c.key.lod == manifest_.grid.top_lod) pinned_.insert(c.key);
-        for (auto& k : pinned_) load_now(k);
+        std::uint64_t pinned_bytes = 0;
+        for (auto& k : pinned_) pinned_bytes += file_bytes(k);
+        if (pinned_bytes > options_.budget_bytes)
+            fail("world ", dir_.string(), ": the budget of ", options_.budget_bytes, " bytes is less than the top LOD's ",
+                 pinned_bytes, " bytes, which are always resident");
+        load_pinned();
+        planned_ = pinned_;
         loader_ = std::thread([this] { load_loop(); });
     }
     ~residency_manager() {
@@ -66,6 +73,7 @@ public:
     // later request, and show their stand-ins meanwhile. Replaces the last request.
     void request(glm::dvec3 camera) {
         wanted_.clear();
+        planned_ = pinned_;
         std::uint64_t planned = 0;
         for (auto& k : pinned_) planned += file_bytes(k);
         std::vector<chunk_key> to_load;
@@ -79,6 +87,7 @@ public:
                 continue;
             }
             planned += bytes;
+            planned_.insert(choice.key);
             if (!resident_.count(choice.key)) to_load.push_back(choice.key);
         }
         {
@@ -94,9 +103,10 @@ public:
         wake_.notify_all();
     }
 
-    // Takes the chunks loaded since the last commit and evicts resident chunks that are
-    // neither pinned, nor wanted, nor the finest resident stand-in for a wanted chunk not
-    // resident. True when the resident set changed.
+    // Takes the chunks loaded since the last commit that the last request planned, and
+    // evicts every resident chunk it did not plan. The planned chunks fit the budget, and
+    // stand-ins are among them (the pinned top LOD at least), so the resident bytes never
+    // pass the budget. True when the resident set changed.
     bool commit() {
         std::vector<chunk_record> arrived;
         {
@@ -105,18 +115,29 @@ public:
         }
         bool changed = false;
         for (auto& c : arrived) {
-            if (resident_.count(c.key)) continue;
+            if (resident_.count(c.key) || !planned_.count(c.key)) continue;  // planned by an older request: dropped
             auto key = c.key;
             resident_.emplace(key, std::make_unique<chunk_record>(std::move(c)));
             changed = true;
         }
-        std::set<chunk_key, chunk_key_less> keep(pinned_.begin(), pinned_.end());
+        // Stand-ins for the planned chunks still loading: the finest resident one above
+        // each, kept while the budget the plan left over allows (else a coarser one,
+        // down to the pinned top LOD, which is planned).
+        std::set<chunk_key, chunk_key_less> keep = planned_;
+        std::uint64_t room = options_.budget_bytes;
+        for (auto& k : planned_) room -= std::min(room, resident_.count(k) ? file_bytes(k) : 0);
         for (auto& k : wanted_) {
-            if (resident_.count(k)) {
-                keep.insert(k);
-                continue;
+            if (resident_.count(k)) continue;
+            for (int n = k.lod + 1; n <= manifest_.grid.top_lod; ++n) {
+                chunk_key up{n, k.cell >> (n - k.lod)};
+                if (!resident_.count(up)) continue;
+                if (keep.count(up)) break;
+                if (file_bytes(up) <= room) {
+                    room -= file_bytes(up);
+                    keep.insert(up);
+                    break;
+                }
             }
-            if (auto stand_in = finest_resident_above(k)) keep.insert(*stand_in);
         }
         for (auto it = resident_.begin(); it != resident_.end();) {
             if (keep.count(it->first)) {
@@ -186,21 +207,33 @@ private:
         }
         return std::nullopt;
     }
-    chunk_record read(const chunk_key& k) const {
-        chunk_record c = read_chunk_file(chunk_file_path(dir_, k), manifest_.grid.chunk_bits);
-        if (!(c.key == k))
-            fail("chunk file ", chunk_file_path(dir_, k).string(), ": holds chunk (LOD ", c.key.lod, ", ", c.key.cell.x,
-                 " ", c.key.cell.y, " ", c.key.cell.z, "), not the one its name says");
-        return c;
-    }
-    void load_now(const chunk_key& k) {
+    // The chunk, or the reason it cannot be shown. Nothing escapes: a loader thread that
+    // threw (std::bad_alloc under a memory limit, say) would end the process.
+    std::optional<chunk_record> read(const chunk_key& k, std::string& failure) const {
         try {
-            resident_.emplace(k, std::make_unique<chunk_record>(read(k)));
-            ++stats_.loads;
+            return read_listed_chunk(dir_, manifest_, k);
         } catch (const error& e) {
-            failed_.insert(k);
-            errors_.push_back(e.what());
-            ++stats_.failures;
+            failure = e.what();
+        } catch (const std::exception& e) {
+            failure = "chunk file " + chunk_file_path(dir_, k).string() + ": " + e.what();
+        }
+        return std::nullopt;
+    }
+    void failed(const chunk_key& k, std::string failure) {
+        failed_.insert(k);
+        errors_.push_back(std::move(failure));
+        ++stats_.failures;
+    }
+    // The top LOD is what every region shows while nothing finer is resident: without
+    // one of its chunks the world cannot be shown, so that is fatal, naming the file.
+    void load_pinned() {
+        for (auto& k : pinned_) {
+            std::string failure;
+            auto c = read(k, failure);
+            if (!c) fail("world ", dir_.string(), ": a chunk of the top LOD (", manifest_.grid.top_lod,
+                         "), which is always shown, cannot be loaded: ", failure);
+            resident_.emplace(k, std::make_unique<chunk_record>(std::move(*c)));
+            ++stats_.loads;
         }
     }
     void load_loop() {
@@ -212,22 +245,15 @@ private:
             queue_.pop_front();
             busy_ = true;
             lock.unlock();
-            std::optional<chunk_record> c;
             std::string failure;
-            try {
-                c = read(k);
-            } catch (const error& e) {
-                failure = e.what();
-            }
+            std::optional<chunk_record> c = read(k, failure);
             lock.lock();
             busy_ = false;
             if (c) {
                 loaded_.push_back(std::move(*c));
                 ++stats_.loads;
             } else {
-                failed_.insert(k);
-                errors_.push_back(failure);
-                ++stats_.failures;
+                failed(k, std::move(failure));
             }
             if (queue_.empty()) idle_.notify_all();
         }
@@ -238,6 +264,7 @@ private:
     world_manifest manifest_;
     lod_tree tree_;
     std::set<chunk_key, chunk_key_less> pinned_, wanted_;
+    std::set<chunk_key, chunk_key_less> planned_;  // of the last request: pinned, then wanted ones within the budget
     std::map<chunk_key, std::unique_ptr<chunk_record>, chunk_key_less> resident_;  // owned by the caller's thread
     std::uint64_t evictions_ = 0;
 
