@@ -25,6 +25,9 @@ else()
     set(arch_default x86-64-v3)
 endif()
 set(arch "$<TARGET_PROPERTY:VOXRAY_CPU_ARCH>")
+# What a target that leaves VOXRAY_CPU_ARCH unset is compiled with (the tool's results
+# header reports it).
+set_property(GLOBAL PROPERTY VOXRAY_CPU_DEFAULT_FLAGS "-march=${arch_default} -ffp-contract=off")
 target_compile_options(voxray_cpu INTERFACE
     "$<$<STREQUAL:${arch},>:-march=${arch_default}>"
     "$<$<NOT:$<OR:$<STREQUAL:${arch},>,$<STREQUAL:${arch},none>>>:-march=${arch}>"

@@ -13,6 +13,7 @@
 #include "cli.hpp"
 #include "edits.hpp"
 #include "engines.hpp"
+#include "units.hpp"
 
 namespace voxray::tool {
 
@@ -86,10 +87,10 @@ int run_edit_bench(const bench_options& o) {
     std::printf("scene %s  structure %s  backend %s (%s)  %d frames of %s, %u threads\n", o.scene.scenes[0].c_str(),
                 structure_name.c_str(), backend.c_str(), engine->device().c_str(), frames,
                 kind == "voxel" ? "one voxel edit" : "100 sphere edits (50 balls, r 25)", o.threads);
-    std::printf("world %d x %d x %d, blob %zu bytes; %.2f ms edits (%.2f ms of it regrowing fields) and %.2f ms update "
-                "per frame\n",
-                world.extent().x, world.extent().y, world.extent().z, structure->bytes(), 1e3 * edit_seconds / frames,
-                1e3 * refine_seconds / frames, 1e3 * update_seconds / frames);
+    std::printf("world %d x %d x %d, blob %s; per frame %s of edits (%s of it regrowing fields) and %s of update\n",
+                world.extent().x, world.extent().y, world.extent().z, human_bytes(double(structure->bytes())).c_str(),
+                human_seconds(edit_seconds / frames).c_str(), human_seconds(refine_seconds / frames).c_str(),
+                human_seconds(update_seconds / frames).c_str());
     if (!o.out.empty()) {
         nlohmann::json j = {{"scene", o.scene.scenes[0]}, {"structure", structure_name}, {"backend", backend},
                             {"edits", kind}, {"threads", o.threads}, {"frames", frames}, {"voxel_writes", writes},
@@ -101,8 +102,10 @@ int run_edit_bench(const bench_options& o) {
         out << j.dump() << "\n";
         if (!out) fail("cannot write ", o.out);
     }
-    std::printf("edits: %.0f voxel writes/s (%.0f without regrowing fields), %.0f bytes uploaded per update\n", per_second,
-                double(writes) / (edit_seconds - refine_seconds), per_update);
+    std::printf("edits: %s (%s without regrowing fields), %s uploaded per update\n",
+                human_rate(per_second, "voxel writes").c_str(),
+                human_rate(double(writes) / (edit_seconds - refine_seconds), "voxel writes").c_str(),
+                human_bytes(per_update).c_str());
     return 0;
 }
 
