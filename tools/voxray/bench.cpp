@@ -10,6 +10,8 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <map>
+#include <optional>
 #include <sstream>
 
 #include <nlohmann/json.hpp>
@@ -18,6 +20,7 @@
 #include "bench_options.hpp"
 #include "cli.hpp"
 #include "engines.hpp"
+#include "output.hpp"
 #include "voxray/check/compare.hpp"
 #include "voxray/check/ray_sets.hpp"
 #include "voxray/io/ray_file.hpp"
@@ -42,7 +45,8 @@ std::string file_name(std::string text) {
 
 // The ray sets of one scene, with the reference's answers. Secondary and shadow rays start
 // from the reference's primary hits, so every structure gets the very same rays.
-std::vector<ray_set> make_ray_sets(const bench_options& o, const voxel_model& model, traceable& reference) {
+std::vector<ray_set> make_ray_sets(const bench_options& o, const voxel_model& model, traceable& reference,
+                                   const std::vector<ray>& file_rays) {
     std::vector<ray_set> sets;
     auto primary = primary_rays(auto_camera(model.bounds(), model.up_axis, 0), o.width, o.height);
     std::vector<hit> primary_hits(primary.size());
@@ -54,7 +58,7 @@ std::vector<ray_set> make_ray_sets(const bench_options& o, const voxel_model& mo
         if (name == "shadow") s.rays = shadow_rays(primary, primary_hits, sun_direction(model.up_axis));
         sets.push_back(std::move(s));
     }
-    if (!o.ray_file.empty()) sets.push_back({"file:" + std::filesystem::path(o.ray_file).stem().string(), io::read_rays(o.ray_file), {}, false, 0, 0});
+    if (!o.ray_file.empty()) sets.push_back({"file:" + std::filesystem::path(o.ray_file).stem().string(), file_rays, {}, false, 0, 0});
     for (auto& s : sets) {
         s.expected.resize(s.rays.size());
         if (s.shadow) reference.any_hit(s.rays, s.expected);
@@ -171,13 +175,30 @@ int run_matrix(const bench_options& o) {
     require_memory(std::uint64_t(o.width) * std::uint64_t(o.height) * (sizeof(ray) + 3 * sizeof(hit)) * (sets_per_scene + 1),
                    "bench at " + std::to_string(o.width) + " x " + std::to_string(o.height));
     if (!o.out.empty()) require_writable(o.out, "--out");
-    if (!o.write_rays.empty()) std::filesystem::create_directories(o.write_rays);
-    if (!o.ray_file.empty()) io::read_rays(o.ray_file);  // a bad file fails now, not after the first scene
+    if (!o.write_rays.empty()) {
+        require_writable_folder(o.write_rays, "--write-rays");
+        // Scenes of one file name would write the same ray files: refused, not overwritten.
+        std::map<std::string, std::string> writer;
+        for (auto& spec : o.scene.scenes) {
+            auto [it, fresh] = writer.emplace(file_name(scene_label(spec)), spec);
+            if (!fresh && it->second != spec)
+                fail("--write-rays ", o.write_rays, ": scenes ", it->second, " and ", spec, " would both write ", it->first,
+                     ".*.vxrays; write their rays in two runs");
+        }
+    }
+    // A ray file is read once, after its header and the memory its rays take (with their
+    // hits, and a copy per scene's ray sets) are checked; a bad one fails now.
+    std::vector<ray> file_rays;
+    if (!o.ray_file.empty()) {
+        std::uint64_t count = io::ray_file_count(o.ray_file);
+        require_memory(count * (2 * sizeof(ray) + 3 * sizeof(hit)), "--ray-file " + o.ray_file + " (" + std::to_string(count) + " rays)");
+        file_rays = io::read_rays(o.ray_file);
+    }
 
-    std::ofstream out;
+    std::optional<output_file> out;
     if (!o.out.empty()) {
-        out.open(o.out);
-        out << results_header(own_command_line(), build_structure("dense", voxel_model{})->trace_on("cpu")->simd_width()).dump() << "\n";
+        out.emplace(o.out, "--out");
+        out->stream() << results_header(own_command_line(), build_structure("dense", voxel_model{})->trace_on("cpu")->simd_width()).dump() << "\n";
     }
     std::printf("%-22s %-14s %-11s %-10s %9s %9s %9s %9s %9s %10s\n", "scene", "structure", "backend", "rays", "Mrays/s",
                 "min", "max", "steps/ray", "B/voxel", "mismatches");
@@ -186,7 +207,7 @@ int run_matrix(const bench_options& o) {
     auto emit = [&](nlohmann::json row) {
         print_row(row);
         ++emitted;
-        if (out.is_open()) out << row.dump() << "\n" << std::flush;
+        if (out) out->stream() << row.dump() << "\n" << std::flush;
         failed += row.contains("error") || row.value("mismatches", std::uint64_t(0)) > 0;
     };
     for (auto& spec : o.scene.scenes) {
@@ -199,7 +220,7 @@ int run_matrix(const bench_options& o) {
             reference = build_structure("dense", model);
             std::fprintf(stderr, "tracing the reference (dense, cpu) for the ray sets ...\n");
             reference_engine = reference->trace_on("cpu");
-            sets = make_ray_sets(o, model, *reference_engine);
+            sets = make_ray_sets(o, model, *reference_engine, file_rays);
         } catch (const std::exception& e) {
             emit({{"type", "row"}, {"scene", scene_label(spec)}, {"voxels", 0}, {"structure", "*"}, {"backend", "*"},
                   {"ray_set", "*"}, {"error", e.what()}});
@@ -248,6 +269,7 @@ int run_matrix(const bench_options& o) {
             }
         }
     }
+    if (out) out->finish();
     std::printf("%d rows; %d with mismatches or errors%s\n", emitted, failed, o.out.empty() ? "" : ("; results in " + o.out).c_str());
     return failed == 0 ? 0 : 1;
 }

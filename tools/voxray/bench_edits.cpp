@@ -13,6 +13,7 @@
 #include "cli.hpp"
 #include "edits.hpp"
 #include "engines.hpp"
+#include "output.hpp"
 #include "units.hpp"
 
 namespace voxray::tool {
@@ -98,9 +99,9 @@ int run_edit_bench(const bench_options& o) {
                             {"refine_ms", 1e3 * refine_seconds / frames},
                             {"writes_per_second_without_refine", double(writes) / (edit_seconds - refine_seconds)},
                             {"blob_bytes", structure->bytes()}, {"update_ms", 1e3 * update_seconds / frames}};
-        std::ofstream out(o.out);
-        out << j.dump() << "\n";
-        if (!out) fail("cannot write ", o.out);
+        output_file out(o.out, "--out");
+        out.stream() << j.dump() << "\n";
+        out.finish();
     }
     std::printf("edits: %s (%s without regrowing fields), %s uploaded per update\n",
                 human_rate(per_second, "voxel writes").c_str(),

@@ -9,6 +9,7 @@
 #include "cli.hpp"
 #include "edits.hpp"
 #include "engines.hpp"
+#include "output.hpp"
 #include "scene.hpp"
 #include "voxray/check/compare.hpp"
 #include "voxray/check/ray_sets.hpp"
@@ -116,9 +117,9 @@ int check(const check_options& o) {
         nlohmann::json doc = {{"scene", o.scene.scenes[0]}, {"voxels", model.voxel_count()}, {"rays", rays.size()},
                               {"seed", o.seed},           {"edits", o.edits},                {"pairs", pairs},
                               {"mismatches", mismatches}, {"ties", ties},                    {"passed", mismatches == 0}};
-        std::ofstream out(o.json);
-        out << doc.dump(2) << "\n";
-        if (!out) fail("cannot write --json ", o.json);
+        output_file out(o.json, "--json");
+        out.stream() << doc.dump(2) << "\n";
+        out.finish();
     }
     return mismatches == 0 ? 0 : 1;
 }

@@ -84,6 +84,16 @@ inline void require_writable(const std::string& path, const std::string& option)
     if (!existed) std::filesystem::remove(path);
 }
 
+// Creates `path` (and its parents) and fails now, before any work, unless a file can be
+// written in it.
+inline void require_writable_folder(const std::string& path, const std::string& option) {
+    std::error_code ec;
+    std::filesystem::create_directories(path, ec);
+    if (ec || !std::filesystem::is_directory(path))
+        fail(option, " ", path, ": cannot be made a folder (", ec ? ec.message() : "it is a file", ")");
+    require_writable((std::filesystem::path(path) / ".voxray-write-probe").string(), option);
+}
+
 // Bytes this process may still allocate: the smaller of the kernel's MemAvailable and the
 // address-space limit (ulimit -v); 0 when neither is known.
 inline std::uint64_t available_memory() {

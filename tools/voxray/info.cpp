@@ -4,12 +4,14 @@
 #include <bitset>
 #include <cstdio>
 #include <fstream>
+#include <optional>
 
 #include <nlohmann/json.hpp>
 
 #include "bench_header.hpp"
 #include "cli.hpp"
 #include "engines.hpp"
+#include "output.hpp"
 #include "scene.hpp"
 
 namespace voxray::tool {
@@ -64,15 +66,15 @@ command add_info(CLI::App& parent) {
         ->capture_default_str();
     app->add_option("--json", o->json, "also write a results file: a header line, then one JSON line per structure");
     return {app, [o] {
-        std::ofstream out;
+        std::optional<output_file> file;
+        std::ofstream none;  // not open: describe() writes no JSON to it
         if (!o->json.empty()) {
-            require_writable(o->json, "--json");
-            out.open(o->json);
-            out << results_header(own_command_line(), build_structure("dense", voxel_model{})->trace_on("cpu")->simd_width()).dump()
-                << "\n";
+            file.emplace(o->json, "--json");
+            file->stream() << results_header(own_command_line(), build_structure("dense", voxel_model{})->trace_on("cpu")->simd_width()).dump()
+                           << "\n";
         }
-        for (auto& spec : o->scene.scenes) describe(spec, *o, out);
-        if (out.is_open() && !out.flush()) fail("cannot write --json ", o->json);
+        for (auto& spec : o->scene.scenes) describe(spec, *o, file ? file->stream() : none);
+        if (file) file->finish();
         return 0;
     }};
 }

@@ -6,7 +6,7 @@
 
 #include "cli.hpp"
 #include "engines.hpp"
-#include "png_writer.hpp"
+#include "image_writer.hpp"
 #include "scene.hpp"
 #include "voxray/rays.hpp"
 
@@ -37,6 +37,7 @@ camera choose_camera(const render_options& o, const voxel_model& model) {
 }
 
 int render(const render_options& o) {
+    require_image_path(o.out, "--out");
     require_writable(o.out, "--out");
     require_memory(bytes_per_pixel * std::uint64_t(o.width) * std::uint64_t(o.height),
                    "render " + std::to_string(o.width) + " x " + std::to_string(o.height) + " (" +
@@ -63,7 +64,7 @@ int render(const render_options& o) {
         auto px = to_srgb8(c);
         std::copy(px.begin(), px.end(), rgb.begin() + i * 3);
     }
-    write_png(o.out, o.width, o.height, rgb);
+    write_image(o.out, o.width, o.height, rgb);
     std::printf("wrote %s (%d x %d, %s on %s)\n", o.out.c_str(), o.width, o.height, structure->name().c_str(), o.backend.c_str());
     return 0;
 }
@@ -71,13 +72,13 @@ int render(const render_options& o) {
 }  // namespace
 
 command add_render(CLI::App& parent) {
-    auto* app = parent.add_subcommand("render", "render a PNG: palette colours, a sun with shadows, sky");
+    auto* app = parent.add_subcommand("render", "render an image: palette colours, a sun with shadows, sky");
     auto o = std::make_shared<render_options>();
     o->scene.add_to(app, false);
     app->add_option("--structure", o->structure, "structure to trace")
         ->check(CLI::IsMember(all_structure_names()))->capture_default_str();
     app->add_option("--backend", o->backend, "backend to trace on")->check(CLI::IsMember(backend_names()))->capture_default_str();
-    app->add_option("--out", o->out, "PNG file to write")->required();
+    app->add_option("--out", o->out, "image to write: .png, .jpg, .bmp or .tga")->required();
     app->add_option("--width", o->width, "image width")->check(CLI::Range(1, 16384))->capture_default_str();
     app->add_option("--height", o->height, "image height")->check(CLI::Range(1, 16384))->capture_default_str();
     auto* view = app->add_option("--view", o->view, "preset view around the scene")->check(CLI::Range(0, 7))->capture_default_str();

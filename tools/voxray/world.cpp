@@ -17,7 +17,9 @@
 #include "backends.hpp"
 #include "cli.hpp"
 #include "engines.hpp"
-#include "png_writer.hpp"
+#include "image_writer.hpp"
+#include "output.hpp"
+#include "world_meta.hpp"
 #include "scene.hpp"
 #include "voxray/io/mesh_loader.hpp"
 #include "voxray/rays.hpp"
@@ -43,25 +45,59 @@ struct build_options {
     scene_options scene;
     std::string out, json_out;
     int chunk_bits = 8, density = 2;
-    bool colours = false;
+    bool colours = false, force = false;
     float colour_error = 0.05f;
     std::vector<int> tile{1, 1, 1};
     unsigned threads = 0;
 };
 
+// Progress on stderr, at most twice a second and at the end of each LOD: chunks done,
+// their rate and the LOD's time to go. (The build calls it one call at a time.)
+std::function<void(const world_build_progress&)> progress_printer() {
+    struct state {
+        double printed = -1, lod_start = 0;
+        int lod = -1;
+    };
+    auto s = std::make_shared<state>();
+    return [s](const world_build_progress& p) {
+        if (p.lod != s->lod) s->lod = p.lod, s->lod_start = p.seconds;
+        if (p.done != p.total && p.seconds - s->printed < 0.5) return;
+        s->printed = p.seconds;
+        double spent = p.seconds - s->lod_start, rate = spent > 0 ? double(p.done) / spent : 0;
+        std::string to_go = rate > 0 ? std::to_string(int(double(p.total - p.done) / rate)) + " s" : "?";
+        std::fprintf(stderr, "LOD %d of %d: %llu / %llu chunks, %.0f chunks/s, %s to go for this LOD, %.0f s in all%s", p.lod,
+                     p.top_lod, (unsigned long long)p.done, (unsigned long long)p.total, rate, to_go.c_str(), p.seconds,
+                     p.done == p.total ? "\n" : "   \r");
+    };
+}
+
 int world_build(const build_options& o) {
     const std::string& spec = o.scene.scenes[0];
+    // Checked before anything loads: the folder, and the report's file.
+    require_writable_folder(o.out, "--out");
+    if (!o.json_out.empty()) require_writable(o.json_out, "--json");
     world_build_options wo;
     wo.chunk_bits = o.chunk_bits;
     wo.density = o.density;
     wo.threads = o.threads;
     wo.attributes = o.colours ? svdag_attributes::colour_blocks : svdag_attributes::exact;
     wo.colour_error = o.colour_error;
+    wo.replace = o.force;
+    wo.progress = progress_printer();
     std::string ext = std::filesystem::path(spec).extension().string();
     bool mesh = ext == ".obj" || ext == ".ply";
     world_build_report report;
     palette pal;
     int up_axis = 2;
+    // The shading hints are written with the chunks, before the manifest: a folder whose
+    // manifest is there has them (and a failed write leaves the build unfinished).
+    wo.before_manifest = [&](const std::filesystem::path& dir) {
+        json colours = json::array();
+        for (int i = 0; i < 256; ++i) colours.push_back(pack_rgba(pal[std::uint8_t(i)].colour));
+        write_file_atomically(dir / world_meta_file,
+                              json{{"scene", scene_label(spec)}, {"up_axis", up_axis}, {"palette", colours}}.dump() + "\n",
+                              "world-build");
+    };
     auto start = std::chrono::steady_clock::now();
     if (mesh) {
         io::triangle_mesh m = io::load_mesh(spec);
@@ -79,10 +115,6 @@ int world_build(const build_options& o) {
     }
     double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     world_manifest m = read_manifest(o.out);
-    json colours = json::array();
-    for (int i = 0; i < 256; ++i) colours.push_back(pack_rgba(pal[std::uint8_t(i)].colour));
-    std::ofstream(std::filesystem::path(o.out) / "voxray-world.json") << json{{"scene", scene_label(spec)}, {"up_axis", up_axis},
-                                                                              {"palette", colours}}.dump() << "\n";
 
     glm::ivec3 e = m.bounds.extent();
     std::printf("world %s: %d x %d x %d voxels, chunks of %d^3, LODs 0..%d, %s attributes\n", o.out.c_str(), e.x, e.y, e.z,
@@ -100,14 +132,15 @@ int world_build(const build_options& o) {
                 seconds, report.seconds, report.voxels_per_second() / 1e6, report.chunks_per_second(), rss,
                 double(m.disk_bytes()) / 1048576.0);
     if (!o.json_out.empty()) {
-        std::ofstream out(o.json_out, std::ios::app);
-        out << json{{"scene", scene_label(spec)}, {"resolution", mesh ? o.scene.resolution : 0}, {"tile", o.tile},
+        output_file out(o.json_out, "--json", std::ios::app);
+        out.stream() << json{{"scene", scene_label(spec)}, {"resolution", mesh ? o.scene.resolution : 0}, {"tile", o.tile},
                     {"extent", {e.x, e.y, e.z}}, {"chunk_bits", m.grid.chunk_bits}, {"top_lod", m.grid.top_lod},
                     {"colours", o.colours}, {"seconds", seconds}, {"build_seconds", report.seconds},
                     {"voxels_per_second", report.voxels_per_second()}, {"chunks_per_second", report.chunks_per_second()},
                     {"peak_rss_mib", rss}, {"disk_bytes", m.disk_bytes()}, {"lods", lods}}
                    .dump()
             << "\n";
+        out.finish();
     }
     return 0;
 }
@@ -147,28 +180,20 @@ int fly(const fly_options& o) {
                    "world-fly " + std::to_string(o.width) + " x " + std::to_string(o.height) + " (" +
                        std::to_string(fly_bytes_per_pixel) + " bytes a pixel)");
     if (!o.json_out.empty()) require_writable(o.json_out, "--json");
-    if (!o.png_dir.empty()) std::filesystem::create_directories(o.png_dir);
+    if (!o.png_dir.empty()) require_writable_folder(o.png_dir, "--png-dir");
     residency_options ro;
     ro.streaming_factor = o.lod0 ? 1e9 : o.factor;
     ro.budget_bytes = o.lod0 ? std::uint64_t(-1) / 2 : std::uint64_t(o.budget_mib * 1048576.0);
     streamed_world world(o.dir, ro);  // fails first, naming the manifest, on a folder without a world
     // Shading hints from world-build (a world built through the library has none: Z up, grey).
-    json meta = json::object();
-    auto meta_path = std::filesystem::path(o.dir) / "voxray-world.json";
-    if (std::filesystem::exists(meta_path)) meta = json::parse(std::ifstream(meta_path));
-    int up_axis = meta.value("up_axis", 2);
-    if (up_axis < 0 || up_axis > 2) fail(meta_path.string(), ": up_axis ", up_axis, " is not 0, 1 or 2");
+    world_meta meta = read_world_meta(o.dir);
+    const int up_axis = meta.up_axis;
+    const palette& pal = meta.colours;
     const world_manifest& m = world.manifest();
     bool colours = m.attributes == svdag_attributes::colour_blocks;
-    palette pal;
-    json colours_of = meta.value("palette", json::array());
-    for (int i = 0; i < 256 && i < int(colours_of.size()); ++i) {
-        std::uint32_t c = colours_of[std::size_t(i)];
-        pal[std::uint8_t(i)].colour = rgba{std::uint8_t(c), std::uint8_t(c >> 8), std::uint8_t(c >> 16), 255};
-    }
     tracer<Backend, streamed_world> t(world);
-    std::ofstream out;
-    if (!o.json_out.empty()) out.open(o.json_out, std::ios::app);
+    std::optional<output_file> out;
+    if (!o.json_out.empty()) out.emplace(o.json_out, "--json", std::ios::app);
     double disk = double(m.disk_bytes());
     std::optional<world_frame<Backend, streamed_world>> passes;  // --passes: the GPU-driven frame
     if (o.passes) passes.emplace(t);
@@ -249,7 +274,7 @@ int fly(const fly_options& o) {
             }
             char name[32];
             std::snprintf(name, sizeof name, "frame_%03d.png", f);
-            write_png((std::filesystem::path(o.png_dir) / name).string(), o.width, o.height, rgb);
+            write_image((std::filesystem::path(o.png_dir) / name).string(), o.width, o.height, rgb);
         }
         if (out) {
             json line{{"world", o.dir}, {"backend", Backend::name}, {"factor", o.lod0 ? 0.0 : o.factor}, {"lod0", o.lod0},
@@ -268,9 +293,10 @@ int fly(const fly_options& o) {
                 line["width"] = o.width;
                 line["height"] = o.height;
             }
-            out << line.dump() << "\n";
+            out->stream() << line.dump() << "\n";
         }
     }
+    if (out) out->finish();
     for (auto& e : world.residency().errors()) std::fprintf(stderr, "not shown: %s\n", e.c_str());
     std::printf("peak resident share of the world on disk (%.1f MiB): %.2f%%\n", disk / 1048576.0, 100.0 * peak_share);
     return world.residency().stats().failures ? 1 : 0;
@@ -290,6 +316,7 @@ command add_world_build(CLI::App& parent) {
     app->add_option("--tile", o->tile, "a .vox or built-in scene repeated X Y Z times")->expected(3)->check(CLI::Range(1, 4096));
     app->add_option("--threads", o->threads, "build threads (0: all)")->capture_default_str();
     app->add_option("--json", o->json_out, "append the build report as a JSON line");
+    app->add_flag("--force", o->force, "replace the world the folder holds, if it is another one");
     return {app, [o] { return world_build(*o); }};
 }
 

@@ -40,10 +40,16 @@ inline void write_rays(const std::filesystem::path& path, std::span<const ray> r
     out.write(reinterpret_cast<const char*>(sizes), 8);
     out.write(reinterpret_cast<const char*>(&count), 8);
     out.write(reinterpret_cast<const char*>(rays.data()), std::streamsize(rays.size_bytes()));
+    out.close();  // a full disk shows when the buffer is flushed
     if (!out) fail("could not write ", rays.size(), " rays to ", path.string());
 }
 
-inline std::vector<ray> read_rays(const std::filesystem::path& path) {
+// The ray count of a .vxrays file, its header checked against the file's size: what a
+// caller checks its memory against before read_rays allocates. Only a regular file is
+// opened (a FIFO would block the open until some writer came).
+inline std::uint64_t ray_file_count(const std::filesystem::path& path) {
+    std::error_code ec;
+    if (!std::filesystem::is_regular_file(path, ec)) fail("ray file ", path.string(), ": not a regular file");
     std::ifstream in(path, std::ios::binary);
     if (!in) fail("ray file ", path.string(), " cannot be opened");
     char magic[8];
@@ -60,6 +66,13 @@ inline std::vector<ray> read_rays(const std::filesystem::path& path) {
     auto actual = std::filesystem::file_size(path);
     if (actual != expected)
         fail("ray file ", path.string(), ": ", actual, " bytes, but a header for ", count, " rays means ", expected);
+    return count;
+}
+
+inline std::vector<ray> read_rays(const std::filesystem::path& path) {
+    std::uint64_t count = ray_file_count(path);
+    std::ifstream in(path, std::ios::binary);
+    in.seekg(24);
     std::vector<ray> rays(count);
     in.read(reinterpret_cast<char*>(rays.data()), std::streamsize(count * sizeof(ray)));
     if (!in) fail("ray file ", path.string(), ": could not read ", count, " rays");
