@@ -223,10 +223,10 @@ TEST(chunk_file, wrong_fields_under_a_valid_checksum_are_errors_at_their_offset)
     struct field_case {
         std::size_t at;
         std::uint32_t value;
-        const char* says;
+        std::string says;
         std::size_t named = 0;  // the offset the message names, when not `at`
     };
-    const std::uint32_t voxels = get32(good, 56);
+    const std::uint32_t voxels = get32(good, 56), max_x = get32(good, 40), min_y = get32(good, 32);
     std::vector<field_case> cases = {
         {8, 21, "lod 21 is outside [0, 20]"},
         {8, std::uint32_t(-1), "lod -1"},
@@ -235,6 +235,9 @@ TEST(chunk_file, wrong_fields_under_a_valid_checksum_are_errors_at_their_offset)
         {24, 6, "DAG depth 5 (expected 6)", 80 + 4 * VX_SV_HEADER_DEPTH},     // a valid size, but not the DAG's
         {28, std::uint32_t(-1), "solid min -1 is outside [0, 32)"},
         {48, 32, "solid max 32 is outside [0, 32)"},
+        // A box inside the chunk but smaller than the DAG's voxels would hide some (issue 22, 14).
+        {40, max_x - 1, "solid max " + std::to_string(max_x - 1) + " is not the DAG's voxels' " + std::to_string(max_x)},
+        {32, min_y + 1, "solid min " + std::to_string(min_y + 1) + " is not the DAG's voxels' " + std::to_string(min_y)},
         {56, voxels + 1, "does not match the DAG root's count"},
         {56, 0, "words is outside [24, 56], the most a DAG of 0 voxels in a chunk of 2^5 a side can need", 64},
         {56, 32 * 32 * 32 + 1, "voxel count 32769 is more than the chunk's 32768 voxels"},

@@ -18,9 +18,9 @@
 //
 // The files are untrusted: a GPU kernel walks the DAG's pointers. A read checks the sizes
 // (the DAG's against what its voxel count can need, the file's against the DAG's) before
-// anything is allocated, the checksum before the content is parsed, then every
-// field and the DAG's structure (svdag/validate.hpp). Every failure is a voxray::error
-// naming the file, the byte offset and the value. A write goes to path + ".tmp" and is
+// anything is allocated, the checksum before the content is parsed, then every field,
+// the DAG's structure (svdag/validate.hpp) and its solid box against its voxels. Every
+// failure is a voxray::error naming the file, the byte offset and the value. A write goes to path + ".tmp" and is
 // renamed into place, so a killed writer never leaves a half file under the real name.
 #pragma once
 #include <algorithm>
@@ -30,7 +30,9 @@
 #include <filesystem>
 #include <fstream>
 #include <string>
+#include <span>
 #include <system_error>
+#include <unordered_map>
 
 #include <glm/vec3.hpp>
 
@@ -86,6 +88,40 @@ inline std::uint64_t dag_word_limit(int chunk_bits, std::uint64_t voxels) {
     for (int d = 0; d <= chunk_bits - VX_SV_LEAF_EDGE_BITS; ++d, level *= 8)
         words += (d < chunk_bits - VX_SV_LEAF_EDGE_BITS ? VX_SV_NODE_CHILDREN + 8 : VX_SV_LEAF_WORDS) * std::min(level, nodes);
     return words;
+}
+
+// The inclusive box of a validated DAG's solid voxels (max < min when it has none): each
+// distinct node's box once, from its children's (a node's depth is unique once validated).
+inline void dag_solid_box(std::span<const std::uint32_t> w, glm::ivec3& lo, glm::ivec3& hi) {
+    struct box {
+        glm::ivec3 lo{1 << 30}, hi{-1};
+    };
+    const int depth = int(w[VX_SV_HEADER_DEPTH]), leaf_depth = depth - VX_SV_LEAF_EDGE_BITS;
+    std::unordered_map<std::uint32_t, box> known;
+    auto box_of = [&](auto&& self, std::uint32_t at, int d) -> box {
+        if (auto it = known.find(at); it != known.end()) return it->second;
+        box b;
+        if (d == leaf_depth) {
+            std::uint64_t mask = w[at] | (std::uint64_t(w[at + 1]) << 32);
+            for (int i = 0; i < 64; ++i)
+                if (mask >> i & 1) {
+                    glm::ivec3 p(i & 3, (i >> 2) & 3, i >> 4);
+                    b.lo = glm::min(b.lo, p), b.hi = glm::max(b.hi, p);
+                }
+        } else {
+            const int half = 1 << (depth - d - 1);
+            int slot = 0;
+            for (int o = 0; o < 8; ++o) {
+                if (!(w[at] >> o & 1)) continue;
+                box c = self(self, w[at + VX_SV_NODE_CHILDREN + slot++], d + 1);
+                glm::ivec3 shift = glm::ivec3(o & 1, (o >> 1) & 1, o >> 2) * half;
+                b.lo = glm::min(b.lo, c.lo + shift), b.hi = glm::max(b.hi, c.hi + shift);
+            }
+        }
+        return known[at] = b;
+    };
+    box root = box_of(box_of, VX_SV_HEADER_WORDS, 0);
+    lo = root.lo, hi = root.hi;
 }
 
 }  // namespace chunk_file_detail
@@ -223,6 +259,17 @@ inline chunk_record read_chunk_file(const std::filesystem::path& path, int expec
     std::uint64_t root_count = c.dag[VX_SV_HEADER_WORDS + 1];
     if (root_count != c.voxel_count)
         bad(off::voxel_count, "voxel count ", c.voxel_count, " does not match the DAG root's count ", root_count);
+    // The solid box is where the walk looks: one smaller than the DAG's voxels hides some.
+    if (!empty) {
+        glm::ivec3 lo, hi;
+        dag_solid_box(c.dag, lo, hi);
+        for (int a = 0; a < 3; ++a) {
+            if (c.solid_min[a] != lo[a])
+                bad(off::solid_min + 4 * a, "solid min ", c.solid_min[a], " is not the DAG's voxels' ", lo[a]);
+            if (c.solid_max[a] != hi[a])
+                bad(off::solid_max + 4 * a, "solid max ", c.solid_max[a], " is not the DAG's voxels' ", hi[a]);
+        }
+    }
     return c;
 }
 
