@@ -12,6 +12,7 @@
 #include <filesystem>
 #include <fstream>
 #include <functional>
+#include <iterator>
 #include <map>
 #include <string>
 
@@ -227,6 +228,24 @@ TEST(world_files, a_resealed_manifest_with_unsound_fields_is_refused) {
         std::string what = error_of([&] { read_manifest(dir.path); });
         EXPECT_TRUE(has(what, c.problem)) << c.name << ": " << what;
     }
+    // A chunk count whose table size wraps around 64 bits to the file's size, resealed, in
+    // a grid with cells enough to allow it: refused by the size, not allocated.
+    world_manifest wide = good;
+    wide.grid = {glm::ivec3(0), glm::ivec3(1 << 20), 4, 20};
+    wide.bounds = {};
+    write_manifest(dir.path, wide);
+    std::ifstream in(manifest_path(dir.path), std::ios::binary);
+    std::vector<unsigned char> b{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+    in.close();
+    std::uint64_t n = (std::uint64_t(1) << 59) + good.chunks.size();  // 32 n + 96 == the size, mod 2^64
+    std::memcpy(b.data() + 80, &n, 8);
+    fnv64 sum;
+    sum.bytes(b.data(), 88);
+    sum.bytes(b.data() + manifest_header_bytes, b.size() - manifest_header_bytes);
+    std::memcpy(b.data() + 88, &sum.h, 8);
+    std::ofstream(manifest_path(dir.path), std::ios::binary).write(reinterpret_cast<const char*>(b.data()), std::streamsize(b.size()));
+    std::string what = error_of([&] { read_manifest(dir.path); });
+    EXPECT_TRUE(has(what, "offset 80: " + std::to_string(n) + " chunks do not match the file size")) << what;
 }
 
 // Defect 5: the budget is a cap. Along a path whose cuts want more than it allows, the

@@ -20,8 +20,9 @@
 // (the DAG's against what its voxel count can need, the file's against the DAG's) before
 // anything is allocated, the checksum before the content is parsed, then every field,
 // the DAG's structure (svdag/validate.hpp) and its solid box against its voxels. Every
-// failure is a voxray::error naming the file, the byte offset and the value. A write goes to path + ".tmp" and is
-// renamed into place, so a killed writer never leaves a half file under the real name.
+// failure is a voxray::error naming the file, the byte offset and the value. A write
+// goes to path + ".tmp" and is renamed into place, so a killed writer never leaves a
+// half file under the real name.
 #pragma once
 #include <algorithm>
 #include <bit>
@@ -29,8 +30,8 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
-#include <string>
 #include <span>
+#include <string>
 #include <system_error>
 #include <unordered_map>
 

@@ -211,7 +211,7 @@ inline world_manifest read_manifest(const std::filesystem::path& dir) {
     m.source_hash = get<std::uint32_t>(head, 76);
     std::uint64_t n = get<std::uint64_t>(head, 80), cells = manifest_detail::chunk_cells(m.grid);
     check(n <= cells, 80, n, "at most one chunk per cell of every LOD");
-    if (size != manifest_header_bytes + manifest_chunk_bytes * n)
+    if (n > (size - manifest_header_bytes) / manifest_chunk_bytes || size != manifest_header_bytes + manifest_chunk_bytes * n)
         fail("world manifest ", name, ": offset 80: ", n, " chunks do not match the file size ", size);
     std::vector<unsigned char> b(std::size_t(size), 0);
     std::copy(head.begin(), head.end(), b.begin());
