@@ -28,13 +28,6 @@ namespace {
 namespace fs = std::filesystem;
 using namespace voxray::test;
 
-world_build_options small_chunks() {
-    world_build_options o;
-    o.chunk_bits = 4;
-    o.threads = 2;
-    return o;
-}
-
 residency_options every_lod0_chunk() {
     residency_options ro;
     ro.streaming_factor = 1000.0;

@@ -43,13 +43,6 @@ namespace {
 namespace fs = std::filesystem;
 using namespace voxray::test;
 
-world_build_options small_chunks(unsigned threads = 2) {
-    world_build_options o;
-    o.chunk_bits = 4;
-    o.threads = threads;
-    return o;
-}
-
 // Streaming that never runs out of budget: what is shown follows Equation 1 alone.
 residency_options roomy_residency() {
     residency_options o;

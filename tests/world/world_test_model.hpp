@@ -1,8 +1,10 @@
 // The model the world tests share: a terrain plus a block of noise at negative coordinates,
-// so that chunks, LODs and the grid's origin all meet negative cells; and the cuts they show.
+// so that chunks, LODs and the grid's origin all meet negative cells; the build options
+// they use for it, and the cuts they show.
 #pragma once
 #include "random_models.hpp"
 #include "voxray/scenes/builtin.hpp"
+#include "voxray/world/build/world_build.hpp"
 #include "voxray/world/world.hpp"
 
 namespace voxray::test {
@@ -12,6 +14,14 @@ inline voxel_model world_test_model() {
     voxel_model noise = random_model(40, 0.05f, 3, glm::ivec3(-50, -20, 30));
     noise.for_each_voxel([&](glm::ivec3 p, std::uint8_t v) { model.set(p, v); });
     return model;
+}
+
+// Builds of the test model: chunks of 16^3, so that it spans many chunks and LODs.
+inline world_build_options small_chunks(unsigned threads = 2) {
+    world_build_options o;
+    o.chunk_bits = 4;
+    o.threads = threads;
+    return o;
 }
 
 // Every chunk of one LOD.

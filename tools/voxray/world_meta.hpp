@@ -37,6 +37,7 @@ inline world_meta read_world_meta(const std::filesystem::path& dir) {
     if (ec || size > world_meta_limit) fail(name, ": ", size, " bytes, more than the limit of ", world_meta_limit);
     std::ifstream in(path, std::ios::binary);
     std::string text{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+    if (in.bad() || text.size() != size) fail(name, ": read failed (", text.size(), " of ", size, " bytes)");
     nlohmann::json j;
     try {
         j = nlohmann::json::parse(text);
