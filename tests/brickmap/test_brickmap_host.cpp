@@ -373,7 +373,7 @@ void write_all(const std::filesystem::path& p, const std::vector<char>& b, std::
 }
 }  // namespace
 
-TEST(BrickmapFile, RoundTripAndCorruption) {
+TEST(BrickmapSaveLoad, RoundTripAndCorruption) {
     using map = brickmap<std::uint8_t, 8>;
     auto model = test::random_model(24, 0.2f, 5, {-3, 0, 2});
     auto m = map::build(model, 2);

@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include "vox_bytes.hpp"
+#include "vox_errors.hpp"
 #include "voxray/io/vox_reader.hpp"
 
 namespace {
@@ -37,19 +38,14 @@ bytes instanced_grid(int outer, int inner, int model_edge = 16, int spacing = 16
     return vox(chunks);
 }
 
-std::string error_of(const bytes& b, const vox_options& options = {}) {
-    try {
-        read_vox_scene(b, "grid.vox", options);
-    } catch (const voxray::error& e) {
-        return e.what();
-    }
-    return "(no error)";
+std::string grid_error_of(const bytes& b, const vox_options& options = {}) {
+    return test::vox_error_of(b, options, "grid.vox");
 }
 
 TEST(VoxLimits, TheIssuesFileIsRefusedByDefault) {
     bytes file = instanced_grid(1024, 1024);
     EXPECT_LT(file.size(), 140000u);  // a small input...
-    auto msg = error_of(file);        // ...that would place 2^28 voxels
+    auto msg = grid_error_of(file);        // ...that would place 2^28 voxels
     EXPECT_NE(msg.find("grid.vox: the scene places 268435456 voxels (1048576 model instances)"), std::string::npos)
         << msg;
     EXPECT_NE(msg.find("above the limit of 134217728 placed voxels"), std::string::npos) << msg;
@@ -58,7 +54,7 @@ TEST(VoxLimits, TheIssuesFileIsRefusedByDefault) {
 // The total is counted before anything is placed: the message names all of it, not the
 // point where placing crossed the limit.
 TEST(VoxLimits, TheVoxelLimitIsCheckedUpFrontWithTheTotal) {
-    auto msg = error_of(instanced_grid(64, 64), {.max_placed_voxels = 100000});
+    auto msg = grid_error_of(instanced_grid(64, 64), {.max_placed_voxels = 100000});
     EXPECT_NE(msg.find("places 1048576 voxels (4096 model instances), above the limit of 100000"), std::string::npos)
         << msg;
 }
@@ -66,7 +62,7 @@ TEST(VoxLimits, TheVoxelLimitIsCheckedUpFrontWithTheTotal) {
 // Single voxels far apart each cost a whole 16^3 chunk: memory, not voxels, is the limit.
 TEST(VoxLimits, TheMemoryBoundIsCheckedUpFront) {
     bytes file = instanced_grid(200, 200, 1, 32);
-    auto msg = error_of(file, {.max_model_bytes = 64 << 20});
+    auto msg = grid_error_of(file, {.max_model_bytes = 64 << 20});
     EXPECT_NE(msg.find("grid.vox: the scene's 40000 model instances may need up to"), std::string::npos) << msg;
     EXPECT_NE(msg.find("above the limit of 67108864 bytes"), std::string::npos) << msg;
     // With the default limit it loads, and the bound it checked covers what it built.
@@ -77,7 +73,7 @@ TEST(VoxLimits, TheMemoryBoundIsCheckedUpFront) {
 
 TEST(VoxLimits, TheCallerSetsTheLimits) {
     bytes file = instanced_grid(16, 16);
-    EXPECT_NE(error_of(file, {.max_placed_voxels = 65535}).find("above the limit of 65535"), std::string::npos);
+    EXPECT_NE(grid_error_of(file, {.max_placed_voxels = 65535}).find("above the limit of 65535"), std::string::npos);
     auto scene = read_vox_scene(file, "grid.vox", {.max_placed_voxels = 65536});
     EXPECT_EQ(scene.stats.instances, 256u);
     EXPECT_EQ(scene.stats.placed_voxels, 65536u);

@@ -16,6 +16,7 @@
 
 #include "test_data.hpp"
 #include "vox_bytes.hpp"
+#include "vox_errors.hpp"
 #include "voxray/io/vox_reader.hpp"
 
 namespace {
@@ -42,14 +43,7 @@ bytes placed_small_model(const dict& frame) {
 
 voxel_model parse(const bytes& b) { return read_vox(b, "test.vox"); }
 
-std::string error_of(const bytes& b, const vox_options& options = {}) {
-    try {
-        read_vox_scene(b, "test.vox", options);
-    } catch (const voxray::error& e) {
-        return e.what();
-    }
-    return "(no error)";
-}
+std::string error_of(const bytes& b, const vox_options& options = {}) { return test::vox_error_of(b, options); }
 
 // Reads `b`; fine when it throws voxray::error. Anything else (another exception, a
 // sanitizer report, a crash) fails the test.

@@ -88,8 +88,6 @@ app_context& app() {
 
 constexpr unsigned char poison = 0xAB;
 
-voxel_model scene() { return test::random_model(40, 0.04f, 5, {-9, 2, -17}); }
-
 // The context and queue still work: a fill and a read on the application's queue.
 void expect_context_usable() {
     cl_mem m = app().buffer(256);
@@ -176,13 +174,13 @@ void traces_in_app_buffers(const Structure& s, const box3i& bounds) {
     expect_context_usable();
 }
 
-TEST(OpenclInterop, BrickmapInAppBuffers) { auto m = scene(); traces_in_app_buffers(brickmap<>(m), m.bounds()); }
-TEST(OpenclInterop, NaadfInAppBuffers) { auto m = scene(); traces_in_app_buffers(naadf(m), m.bounds()); }
+TEST(OpenclInterop, BrickmapInAppBuffers) { auto m = test::offset_random_scene(); traces_in_app_buffers(brickmap<>(m), m.bounds()); }
+TEST(OpenclInterop, NaadfInAppBuffers) { auto m = test::offset_random_scene(); traces_in_app_buffers(naadf(m), m.bounds()); }
 
 // Incremental updates go through the application's queue too: after an edit and update(),
 // a trace on the application's buffers sees the new voxels.
 TEST(OpenclInterop, UpdateOnAppQueue) {
-    auto m = scene();
+    auto m = test::offset_random_scene();
     brickmap<> s(m);
     tracer<opencl, brickmap<>> t(s, app().options());
     s.apply(regions::sphere{{10, 20, -5}, 6}, edit_op::fill, 7);
@@ -220,7 +218,7 @@ std::string error_of(F f) {
 }
 
 TEST(OpenclInterop, BadInputIsNamed) {
-    auto m = scene();
+    auto m = test::offset_random_scene();
     brickmap<> s(m);
     auto bad_context = [&](auto change) {
         opencl_options o = app().options();

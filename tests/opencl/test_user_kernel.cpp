@@ -112,11 +112,9 @@ void user_kernel_matches_cpu(const Structure& s, const box3i& bounds, const std:
     EXPECT_EQ(bad_flags, 0u) << name << ": any-hit flags from the user's kernel differ";
 }
 
-voxel_model scene() { return test::random_model(40, 0.04f, 5, {-9, 2, -17}); }
-
-TEST(UserKernel, DenseGrid) { auto m = scene(); user_kernel_matches_cpu(dense_grid(m), m.bounds(), "svdag"); }
-TEST(UserKernel, Brickmap) { auto m = scene(); user_kernel_matches_cpu(brickmap<>(m), m.bounds(), "dense_grid"); }
-TEST(UserKernel, Naadf) { auto m = scene(); user_kernel_matches_cpu(naadf(m), m.bounds(), "brickmap"); }
-TEST(UserKernel, Svdag) { auto m = scene(); user_kernel_matches_cpu(svdag(m), m.bounds(), "naadf"); }
+TEST(UserKernel, DenseGrid) { auto m = test::offset_random_scene(); user_kernel_matches_cpu(dense_grid(m), m.bounds(), "svdag"); }
+TEST(UserKernel, Brickmap) { auto m = test::offset_random_scene(); user_kernel_matches_cpu(brickmap<>(m), m.bounds(), "dense_grid"); }
+TEST(UserKernel, Naadf) { auto m = test::offset_random_scene(); user_kernel_matches_cpu(naadf(m), m.bounds(), "brickmap"); }
+TEST(UserKernel, Svdag) { auto m = test::offset_random_scene(); user_kernel_matches_cpu(svdag(m), m.bounds(), "naadf"); }
 
 }  // namespace

@@ -22,6 +22,10 @@ inline voxel_model random_model(int size, float density, std::uint64_t seed, glm
     return m;
 }
 
+// A sparse 40^3 random model at an odd offset: what the user-kernel, user-shader and
+// interop tests trace.
+inline voxel_model offset_random_scene() { return random_model(40, 0.04f, 5, {-9, 2, -17}); }
+
 // `count` voxels at random places of box b (repeats allowed), random materials.
 inline voxel_model random_sparse(box3i b, int count, std::uint64_t seed) {
     voxel_model m;

@@ -168,8 +168,6 @@ app_device& app() {
 constexpr unsigned char poison = 0xAB;
 constexpr VkDeviceSize ray_offset = 64, hit_offset = 96;  // multiples of 16, not of 32 * n
 
-voxel_model scene() { return test::random_model(40, 0.04f, 5, {-9, 2, -17}); }
-
 std::vector<hit> read_hits(const app_buffer& b, std::size_t count) {
     std::vector<hit> hits(count);
     std::memcpy(hits.data(), b.bytes() + hit_offset, count * sizeof(hit));
@@ -267,13 +265,13 @@ void traces_in_app_buffers(const Structure& s, const box3i& bounds) {
     expect_device_usable();
 }
 
-TEST(VulkanInterop, BrickmapInAppBuffers) { auto m = scene(); traces_in_app_buffers(brickmap<>(m), m.bounds()); }
-TEST(VulkanInterop, NaadfInAppBuffers) { auto m = scene(); traces_in_app_buffers(naadf(m), m.bounds()); }
+TEST(VulkanInterop, BrickmapInAppBuffers) { auto m = test::offset_random_scene(); traces_in_app_buffers(brickmap<>(m), m.bounds()); }
+TEST(VulkanInterop, NaadfInAppBuffers) { auto m = test::offset_random_scene(); traces_in_app_buffers(naadf(m), m.bounds()); }
 
 // Several tracers made and destroyed on one device, the last still tracing after the
 // others are gone: nothing of theirs took the device with it.
 TEST(VulkanInterop, TracersComeAndGo) {
-    auto m = scene();
+    auto m = test::offset_random_scene();
     naadf s(m);
     auto rays = check_rays(m.bounds(), 1, 500, 5);
     std::vector<hit> expected(rays.size()), got(rays.size());
@@ -292,7 +290,7 @@ TEST(VulkanInterop, TracersComeAndGo) {
 // Staged uploads and incremental updates go through the application's queue too: after an
 // edit and update(), a trace on the application's buffers sees the new voxels.
 TEST(VulkanInterop, StagedUpdateOnAppQueue) {
-    auto m = scene();
+    auto m = test::offset_random_scene();
     brickmap<> s(m);
     vulkan_options o = app().options();
     o.force_staging = true;
@@ -328,7 +326,7 @@ std::string error_of(F f) {
 }
 
 TEST(VulkanInterop, BadInputIsNamed) {
-    auto m = scene();
+    auto m = test::offset_random_scene();
     brickmap<> s(m);
     auto bad_device = [&](auto change) {
         vulkan_options o = app().options();

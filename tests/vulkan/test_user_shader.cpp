@@ -93,11 +93,9 @@ void user_shader_matches_cpu(const Structure& s, const box3i& bounds) {
     EXPECT_EQ(bad_flags, 0u) << name << ": any-hit flags from the user's shader differ";
 }
 
-voxel_model scene() { return test::random_model(40, 0.04f, 5, {-9, 2, -17}); }
-
-TEST(UserShader, DenseGrid) { auto m = scene(); user_shader_matches_cpu(dense_grid(m), m.bounds()); }
-TEST(UserShader, Brickmap) { auto m = scene(); user_shader_matches_cpu(brickmap<>(m), m.bounds()); }
-TEST(UserShader, Naadf) { auto m = scene(); user_shader_matches_cpu(naadf(m), m.bounds()); }
-TEST(UserShader, Svdag) { auto m = scene(); user_shader_matches_cpu(svdag(m), m.bounds()); }
+TEST(UserShader, DenseGrid) { auto m = test::offset_random_scene(); user_shader_matches_cpu(dense_grid(m), m.bounds()); }
+TEST(UserShader, Brickmap) { auto m = test::offset_random_scene(); user_shader_matches_cpu(brickmap<>(m), m.bounds()); }
+TEST(UserShader, Naadf) { auto m = test::offset_random_scene(); user_shader_matches_cpu(naadf(m), m.bounds()); }
+TEST(UserShader, Svdag) { auto m = test::offset_random_scene(); user_shader_matches_cpu(svdag(m), m.bounds()); }
 
 }  // namespace
