@@ -13,27 +13,15 @@
 #include "voxray/check/compare.hpp"
 #include "voxray/check/ray_sets.hpp"
 #include "voxray/core/type_list.hpp"
-#include "voxray/cpu.hpp"
 #include "voxray/dense_grid/dense_grid.hpp"
-#if VOXRAY_WITH_OPENCL
-#include "voxray/opencl.hpp"
-#endif
-#if VOXRAY_WITH_VULKAN
-#include "voxray/vulkan.hpp"
-#endif
+#include "voxray/generated/backends.hpp"
 
 using namespace voxray;
 
 namespace {
 
-using backends = type_list<cpu, cpu_scalar
-#if VOXRAY_WITH_OPENCL
-                           , opencl
-#endif
-#if VOXRAY_WITH_VULKAN
-                           , vulkan
-#endif
-                           >;
+// Every tracer backend this program links.
+using backends = registered::backends;
 
 template <class Tracer>
 std::vector<hit> closest(Tracer& t, const std::vector<ray>& rays) {

@@ -5,18 +5,12 @@
 
 #include <gtest/gtest.h>
 
+#include "every_backend.hpp"
 #include "hit_bits.hpp"
 #include "random_models.hpp"
 #include "voxray/brickmap/brickmap.hpp"
 #include "voxray/check/ray_sets.hpp"
-#include "voxray/cpu.hpp"
 #include "voxray/dense_grid/dense_grid.hpp"
-#if VOXRAY_WITH_OPENCL
-#include "voxray/opencl.hpp"
-#endif
-#if VOXRAY_WITH_VULKAN
-#include "voxray/vulkan.hpp"
-#endif
 
 using namespace voxray;
 
@@ -46,20 +40,14 @@ void single_rays_match_batches(const Structure& s, const box3i& bounds) {
 }
 
 template <class Backend>
-void on_both_structures() {
-    voxel_model model = test::random_model(24, 0.05f, 9, {-5, 3, -7});
-    single_rays_match_batches<Backend>(dense_grid(model), model.bounds());
-    single_rays_match_batches<Backend>(brickmap<>(model), model.bounds());
-}
+struct SingleRayOn : ::testing::Test {};
+TYPED_TEST_SUITE(SingleRayOn, test::every_backend, test::backend_names);
 
-TEST(SingleRay, CpuMatchesBatches) { on_both_structures<cpu>(); }
-TEST(SingleRay, CpuScalarMatchesBatches) { on_both_structures<cpu_scalar>(); }
-#if VOXRAY_WITH_OPENCL
-TEST(SingleRay, OpenclMatchesBatches) { on_both_structures<opencl>(); }
-#endif
-#if VOXRAY_WITH_VULKAN
-TEST(SingleRay, VulkanMatchesBatches) { on_both_structures<vulkan>(); }
-#endif
+TYPED_TEST(SingleRayOn, MatchesBatches) {
+    voxel_model model = test::random_model(24, 0.05f, 9, {-5, 3, -7});
+    single_rays_match_batches<TypeParam>(dense_grid(model), model.bounds());
+    single_rays_match_batches<TypeParam>(brickmap<>(model), model.bounds());
+}
 
 TEST(SingleRay, TooFewFlagsIsAnError) {
     voxel_model model = test::solid_block({0, 0, 0}, {2, 2, 2});

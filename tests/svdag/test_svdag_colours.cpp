@@ -7,20 +7,14 @@
 #include <limits>
 #include <string>
 
+#include "every_backend.hpp"
 #include "random_models.hpp"
 #include "special_rays.hpp"
 #include "voxray/check/compare.hpp"
-#include "voxray/cpu.hpp"
 #include "voxray/dense_grid/dense_grid.hpp"
 #include "voxray/scenes/builtin.hpp"
 #include "voxray/svdag/svdag.hpp"
 #include "voxray/tracer.hpp"
-#if VOXRAY_WITH_OPENCL
-#include "voxray/opencl.hpp"
-#endif
-#if VOXRAY_WITH_VULKAN
-#include "voxray/vulkan.hpp"
-#endif
 
 namespace voxray {
 namespace {
@@ -41,7 +35,12 @@ voxel_model coloured_terrain() {
 }
 
 template <class Backend>
-void colours_within_the_error(const char* backend) {
+struct svdag_colours_on : ::testing::Test {};
+TYPED_TEST_SUITE(svdag_colours_on, every_backend, backend_names);
+
+TYPED_TEST(svdag_colours_on, hits_carry_colours_within_the_error) {
+    using Backend = TypeParam;
+    const char* backend = Backend::name;
     voxel_model model = coloured_terrain();
     svdag_options o;
     o.colour_error = 0.05f;
@@ -72,15 +71,6 @@ void colours_within_the_error(const char* backend) {
                 compared, worst, (unsigned long long)dag.stats().colour_blocks,
                 (unsigned long long)model.voxel_count());
 }
-
-TEST(svdag_colours, cpu) { colours_within_the_error<cpu>("cpu"); }
-TEST(svdag_colours, cpu_scalar) { colours_within_the_error<cpu_scalar>("cpu-scalar"); }
-#if VOXRAY_WITH_OPENCL
-TEST(svdag_colours, opencl) { colours_within_the_error<opencl>("opencl"); }
-#endif
-#if VOXRAY_WITH_VULKAN
-TEST(svdag_colours, vulkan) { colours_within_the_error<vulkan>("vulkan"); }
-#endif
 
 TEST(svdag_colours, an_error_outside_0_1_says_so) {
     voxel_model model = make_builtin("menger:27", 1);

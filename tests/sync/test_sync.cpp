@@ -9,21 +9,14 @@
 #include <cstdio>
 #include <cstring>
 #include <string>
-#include <type_traits>
 #include <utility>
 #include <vector>
 
 #include "edited_grid.hpp"
+#include "every_backend.hpp"
 #include "random_models.hpp"
 #include "voxray/core/type_list.hpp"
-#include "voxray/cpu.hpp"
 #include "voxray/sync/commit_packet.hpp"
-#if VOXRAY_WITH_OPENCL
-#include "voxray/opencl.hpp"
-#endif
-#if VOXRAY_WITH_VULKAN
-#include "voxray/vulkan.hpp"
-#endif
 
 // The portable commit kernel compiled as C++ (scalar lanes supply uint and vx_load).
 namespace voxray::kernels::scalar {
@@ -36,15 +29,9 @@ using namespace voxray;
 using test::edit_kind;
 using test::edited_grid;
 
-// Every backend built: the CPU always, the GPU ones when present (a missing device fails).
-using backends = type_list<cpu
-#if VOXRAY_WITH_OPENCL
-                           , opencl
-#endif
-#if VOXRAY_WITH_VULKAN
-                           , vulkan
-#endif
-                           >;
+// Every tracer backend this program links: the CPU always, the GPU ones when built (a
+// missing device fails).
+using backends = registered::backends;
 
 edited_grid initial_grid() { return edited_grid(dense_grid(test::random_model(64, 0.02f, 7, {-9, 3, -30}))); }
 
@@ -72,6 +59,12 @@ std::size_t bit_differences(const std::vector<hit>& a, const std::vector<hit>& b
     return n;
 }
 
+// The CPU backends (either lane kind) copy the changed words; the others send a packet.
+template <class Backend>
+constexpr bool copies_words = false;
+template <bool Simd>
+constexpr bool copies_words<cpu_backend<Simd>> = true;
+
 // Bytes an update of `ranges` may send: the packed words (CPU: copied words), or the whole
 // blob when the packet would not be smaller; never more than the ranges plus their table.
 template <class Backend>
@@ -79,7 +72,7 @@ std::uint64_t expected_bytes(const std::vector<word_range>& ranges, std::uint32_
     std::vector<word_range> merged = sync::normalize_ranges(ranges, blob_words);
     std::uint64_t words = sync::total_words(merged);
     if (merged.empty()) return 0;
-    if constexpr (std::is_same_v<Backend, cpu>) return words * 4;
+    if constexpr (copies_words<Backend>) return words * 4;
     std::uint64_t packet = sync::packet_words(merged.size(), words);
     return 4 * (packet >= blob_words ? blob_words : packet);
 }
@@ -133,12 +126,12 @@ void random_updates(typename Backend::options options, std::uint64_t seed, int s
     EXPECT_EQ(bit_differences(trace(incremental, rays, false), trace(fresh, rays, false)), 0u);
 }
 
-TEST(sync, cpu_random_partial_updates) { random_updates<cpu>({}, 11, 60); }
-#if VOXRAY_WITH_OPENCL
-TEST(sync, opencl_random_partial_updates) { random_updates<opencl>({}, 12, 60); }
-#endif
-#if VOXRAY_WITH_VULKAN
-TEST(sync, vulkan_random_partial_updates) { random_updates<vulkan>({}, 13, 60); }
+template <class Backend>
+struct sync_on : ::testing::Test {};
+TYPED_TEST_SUITE(sync_on, test::every_backend, test::backend_names);
+
+TYPED_TEST(sync_on, random_partial_updates) { random_updates<TypeParam>({}, 11, 60); }
+#if defined(VOXRAY_LINKED_VULKAN)
 TEST(sync, vulkan_staged_random_partial_updates) {
     vulkan_options options;
     options.force_staging = true;  // packet and blob through copy commands, as on a discrete GPU
@@ -233,7 +226,7 @@ void time_one_brick(typename Backend::options options) {
 
 TEST(sync, one_brick_update_timing) {
     for_each_type(backends{}, []<class B>() { time_one_brick<B>({}); });
-#if VOXRAY_WITH_VULKAN
+#if defined(VOXRAY_LINKED_VULKAN)
     vulkan_options staged;
     staged.force_staging = true;
     time_one_brick<vulkan>(staged);

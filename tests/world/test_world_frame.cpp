@@ -12,13 +12,8 @@
 #include "voxray/cpu.hpp"
 #include "voxray/tracer.hpp"
 #include "voxray/world/frame/frame.hpp"
+#include "every_backend.hpp"
 #include "world_test_model.hpp"
-#if VOXRAY_WITH_OPENCL
-#include "voxray/opencl.hpp"
-#endif
-#if VOXRAY_WITH_VULKAN
-#include "voxray/vulkan.hpp"
-#endif
 
 namespace voxray {
 namespace {
@@ -150,14 +145,11 @@ void frames_match_the_trace(const char* backend) {
     EXPECT_GT(stats[4].pairs_again, 0u);
 }
 
-TEST(world_frame, cpu) { frames_match_the_trace<cpu>("cpu"); }
-TEST(world_frame, cpu_scalar) { frames_match_the_trace<cpu_scalar>("cpu-scalar"); }
-#if VOXRAY_WITH_OPENCL
-TEST(world_frame, opencl) { frames_match_the_trace<opencl>("opencl"); }
-#endif
-#if VOXRAY_WITH_VULKAN
-TEST(world_frame, vulkan) { frames_match_the_trace<vulkan>("vulkan"); }
-#endif
+template <class Backend>
+struct world_frame_on : ::testing::Test {};
+TYPED_TEST_SUITE(world_frame_on, every_backend, backend_names);
+
+TYPED_TEST(world_frame_on, frames_match_the_trace) { frames_match_the_trace<TypeParam>(TypeParam::name); }
 
 TEST(world_frame, chunks_wider_than_the_visibility_word_are_refused) {
     voxel_model model = scenes::make_builtin("terrain:64", 2);

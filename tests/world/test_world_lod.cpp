@@ -18,13 +18,8 @@
 #include "voxray/svdag/decode.hpp"
 #include "voxray/tracer.hpp"
 #include "voxray/world/world.hpp"
+#include "every_backend.hpp"
 #include "world_test_model.hpp"
-#if VOXRAY_WITH_OPENCL
-#include "voxray/opencl.hpp"
-#endif
-#if VOXRAY_WITH_VULKAN
-#include "voxray/vulkan.hpp"
-#endif
 
 namespace voxray {
 namespace {
@@ -216,14 +211,11 @@ TEST(world_lod, colour_worlds_average_colours_up_the_chain) {
     EXPECT_GT(checked, 1000u);
 }
 
-TEST(world_lod, cuts_on_cpu) { every_cut<cpu>("cpu"); }
-TEST(world_lod, cuts_on_cpu_scalar) { every_cut<cpu_scalar>("cpu-scalar"); }
-#if VOXRAY_WITH_OPENCL
-TEST(world_lod, cuts_on_opencl) { every_cut<opencl>("opencl"); }
-#endif
-#if VOXRAY_WITH_VULKAN
-TEST(world_lod, cuts_on_vulkan) { every_cut<vulkan>("vulkan"); }
-#endif
+template <class Backend>
+struct world_lod_on : ::testing::Test {};
+TYPED_TEST_SUITE(world_lod_on, every_backend, backend_names);
+
+TYPED_TEST(world_lod_on, every_cut_traces_as_the_reference) { every_cut<TypeParam>(TypeParam::name); }
 
 }  // namespace
 }  // namespace voxray

@@ -29,13 +29,8 @@
 #include "voxray/world/build/model_source.hpp"
 #include "voxray/world/stream/streamed_world.hpp"
 #include "voxray/world/build/world_build.hpp"
+#include "every_backend.hpp"
 #include "world_test_model.hpp"
-#if VOXRAY_WITH_OPENCL
-#include "voxray/opencl.hpp"
-#endif
-#if VOXRAY_WITH_VULKAN
-#include "voxray/vulkan.hpp"
-#endif
 
 namespace voxray {
 namespace {
@@ -246,14 +241,11 @@ void streamed_matches_memory(const char* backend) {
     EXPECT_GT(world.residency().stats().evictions, 0u);
 }
 
-TEST(world_stream, matches_the_in_memory_world_on_cpu) { streamed_matches_memory<cpu>("cpu"); }
-TEST(world_stream, matches_the_in_memory_world_on_cpu_scalar) { streamed_matches_memory<cpu_scalar>("cpu-scalar"); }
-#if VOXRAY_WITH_OPENCL
-TEST(world_stream, matches_the_in_memory_world_on_opencl) { streamed_matches_memory<opencl>("opencl"); }
-#endif
-#if VOXRAY_WITH_VULKAN
-TEST(world_stream, matches_the_in_memory_world_on_vulkan) { streamed_matches_memory<vulkan>("vulkan"); }
-#endif
+template <class Backend>
+struct world_stream_on : ::testing::Test {};
+TYPED_TEST_SUITE(world_stream_on, every_backend, backend_names);
+
+TYPED_TEST(world_stream_on, matches_the_in_memory_world) { streamed_matches_memory<TypeParam>(TypeParam::name); }
 
 // Several tracers on one streamed world, one per backend, each refreshed with
 // update(world) after every frame, from threads of their own: each must hold the world's

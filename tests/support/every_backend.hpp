@@ -1,0 +1,31 @@
+// Typed tests over every tracer backend the test program links: the list is
+// voxray::registered::backends (the CPU lanes always; OpenCL and Vulkan where the program
+// links them), so a new backend enters every such test with no test edit.
+//
+//   template <class Backend> struct my_suite : ::testing::Test {};
+//   TYPED_TEST_SUITE(my_suite, every_backend, backend_names);
+//   TYPED_TEST(my_suite, claim) { ... TypeParam ... }   // runs as my_suite/vulkan.claim
+#pragma once
+#include <string>
+
+#include <gtest/gtest.h>
+
+#include "typed_cases.hpp"
+#include "voxray/generated/backends.hpp"
+
+namespace voxray::test {
+
+using every_backend = gtest_types<registered::backends>::type;
+
+// Test names: the backend's name ("cpu_scalar" for "cpu-scalar": gtest wants identifiers).
+struct backend_names {
+    template <class Backend>
+    static std::string GetName(int) {
+        std::string s = Backend::name;
+        for (char& c : s)
+            if (c == '-') c = '_';
+        return s;
+    }
+};
+
+}  // namespace voxray::test
