@@ -6,7 +6,6 @@
 //   TYPED_TEST_SUITE(my_suite, every_backend, backend_names);
 //   TYPED_TEST(my_suite, claim) { ... TypeParam ... }   // runs as my_suite/vulkan.claim
 #pragma once
-#include <string>
 
 #include <gtest/gtest.h>
 
@@ -17,15 +16,7 @@ namespace voxray::test {
 
 using every_backend = gtest_types<registered::backends>::type;
 
-// Test names: the backend's name ("cpu_scalar" for "cpu-scalar": gtest wants identifiers).
-struct backend_names {
-    template <class Backend>
-    static std::string GetName(int) {
-        std::string s = Backend::name;
-        for (char& c : s)
-            if (c == '-') c = '_';
-        return s;
-    }
-};
+// Test names: the backend's name ("cpu_scalar" for "cpu-scalar").
+using backend_names = type_names;
 
 }  // namespace voxray::test

@@ -41,6 +41,18 @@ struct gtest_types<type_list<T...>> {
 template <class Structures, class... Backends>
 using cases_t = typename gtest_types<typename cross<type_list<Backends...>, Structures>::type>::type;
 
+// Test names from a type's own name (T::name: a backend's or a structure's), with
+// characters gtest dislikes replaced ("cpu-scalar" -> "cpu_scalar").
+struct type_names {
+    template <class T>
+    static std::string GetName(int) {
+        std::string s(T::name);
+        for (char& c : s)
+            if (c == '-') c = '_';
+        return s;
+    }
+};
+
 // Test names: "<structure>_on_<backend>", with characters gtest dislikes replaced.
 struct case_names {
     template <class Case>

@@ -13,12 +13,9 @@
 
 #include "hit_bits.hpp"
 #include "random_models.hpp"
-#include "voxray/brickmap/brickmap.hpp"
+#include "every_structure.hpp"
 #include "voxray/check/ray_sets.hpp"
 #include "voxray/cpu.hpp"
-#include "voxray/dense_grid/dense_grid.hpp"
-#include "voxray/naadf/naadf.hpp"
-#include "voxray/svdag/svdag.hpp"
 #include "voxray/vulkan.hpp"
 
 using namespace voxray;
@@ -93,9 +90,13 @@ void user_shader_matches_cpu(const Structure& s, const box3i& bounds) {
     EXPECT_EQ(bad_flags, 0u) << name << ": any-hit flags from the user's shader differ";
 }
 
-TEST(UserShader, DenseGrid) { auto m = test::offset_random_scene(); user_shader_matches_cpu(dense_grid(m), m.bounds()); }
-TEST(UserShader, Brickmap) { auto m = test::offset_random_scene(); user_shader_matches_cpu(brickmap<>(m), m.bounds()); }
-TEST(UserShader, Naadf) { auto m = test::offset_random_scene(); user_shader_matches_cpu(naadf(m), m.bounds()); }
-TEST(UserShader, Svdag) { auto m = test::offset_random_scene(); user_shader_matches_cpu(svdag(m), m.bounds()); }
+template <class Structure>
+struct UserShaderOn : ::testing::Test {};
+TYPED_TEST_SUITE(UserShaderOn, test::every_structure, test::structure_names);
+
+TYPED_TEST(UserShaderOn, MatchesTheCpuTracer) {
+    auto m = test::offset_random_scene();
+    user_shader_matches_cpu(TypeParam(m), m.bounds());
+}
 
 }  // namespace
