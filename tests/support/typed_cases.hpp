@@ -41,15 +41,18 @@ struct gtest_types<type_list<T...>> {
 template <class Structures, class... Backends>
 using cases_t = typename gtest_types<typename cross<type_list<Backends...>, Structures>::type>::type;
 
-// Test names from a type's own name (T::name: a backend's or a structure's), with
-// characters gtest dislikes replaced ("cpu-scalar" -> "cpu_scalar").
+// `s` with the characters gtest dislikes in a test name replaced ("cpu-scalar" -> "cpu_scalar").
+inline std::string gtest_identifier(std::string s) {
+    for (char& c : s)
+        if (c == '-') c = '_';
+    return s;
+}
+
+// Test names from a type's own name (T::name: a backend's or a structure's).
 struct type_names {
     template <class T>
     static std::string GetName(int) {
-        std::string s(T::name);
-        for (char& c : s)
-            if (c == '-') c = '_';
-        return s;
+        return gtest_identifier(std::string(T::name));
     }
 };
 
@@ -57,10 +60,7 @@ struct type_names {
 struct case_names {
     template <class Case>
     static std::string GetName(int) {
-        std::string s = std::string(Case::structure::name) + "_on_" + Case::backend::name;
-        for (char& c : s)
-            if (c == '-') c = '_';
-        return s;
+        return gtest_identifier(std::string(Case::structure::name) + "_on_" + Case::backend::name);
     }
 };
 
