@@ -10,6 +10,8 @@
 #include "voxray/check/ray_sets.hpp"
 #include "voxray/cpu/lanes.hpp"
 
+static_assert(VOXRAY_CPU_SIMD_LANES, "the SIMD lane sets are compiled in this file (tests/cpu/CMakeLists.txt)");
+
 // run_stack_program(seed, rounds): the number of entries checked; fails the test on the
 // first entry that differs. Defined once per lane namespace, in that namespace's ISA.
 #define VOXRAY_STACK_PROGRAM                                                                              \

@@ -237,5 +237,9 @@ private:
 
 }  // namespace voxray
 
+// The out-of-line members: here, or compiled once in voxray::kernels (core/host_code.hpp).
+#include "voxray/core/host_code.hpp"
+#if VOXRAY_HOST_DEFINITIONS
 #include "voxray/naadf/detail/edit.hpp"
 #include "voxray/naadf/detail/upkeep.hpp"
+#endif

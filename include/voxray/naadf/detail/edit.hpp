@@ -28,7 +28,7 @@
 
 namespace voxray {
 
-inline naadf::naadf(const voxel_model& model, naadf_options options) : outside_(options.outside) {
+VOXRAY_HOST_INLINE naadf::naadf(const voxel_model& model, naadf_options options) : outside_(options.outside) {
     auto start = std::chrono::steady_clock::now();
     auto built = naadf_detail::build(model, options);
     grid_ = naadf_detail::grid_placement(built.bounds);
@@ -47,21 +47,21 @@ inline naadf::naadf(const voxel_model& model, naadf_options options) : outside_(
     build_seconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
-inline naadf::naadf(naadf_detail::cell_store store, naadf_detail::group_table groups, box3i bounds, std::uint64_t voxels,
+VOXRAY_HOST_INLINE naadf::naadf(naadf_detail::cell_store store, naadf_detail::group_table groups, box3i bounds, std::uint64_t voxels,
                     voxray::palette palette)
     : store_(std::move(store)), groups_(std::move(groups)), grid_(bounds), voxel_count_(voxels), palette_(std::move(palette)) {
     stale_at_.assign(grid_.page_count, 0);
     touched_flag_.assign(grid_.page_count, 0);
 }
 
-inline std::uint32_t naadf::chunk_cell(glm::ivec3 grid) const {
+VOXRAY_HOST_INLINE std::uint32_t naadf::chunk_cell(glm::ivec3 grid) const {
     std::uint32_t page = *store_.page_cell(page_slot(grid));
     if (VX_NA_STATE(page) != VX_NA_MIXED) return VX_NA_STATE(page) == VX_NA_UNIFORM ? page : 0u;
     auto g = glm::uvec3(grid);
     return store_.chunk_array(VX_NA_PAYLOAD(page))[VX_NA_CHUNK_INDEX(g.x, g.y, g.z)];
 }
 
-inline naadf::payload_type naadf::get(glm::ivec3 p) const {
+VOXRAY_HOST_INLINE naadf::payload_type naadf::get(glm::ivec3 p) const {
     std::shared_lock lock(locks_.m);
     if (!grid_.bounds.contains(p)) return 0;
     glm::ivec3 grid = p - grid_.origin;
@@ -75,7 +75,7 @@ inline naadf::payload_type naadf::get(glm::ivec3 p) const {
     return voxel & VX_NA_VOXEL_SOLID ? payload_type(voxel & VX_NA_TYPE_MASK) : 0;
 }
 
-inline std::vector<glm::ivec3> naadf::chunks_of(const box3i& b) const {
+VOXRAY_HOST_INLINE std::vector<glm::ivec3> naadf::chunks_of(const box3i& b) const {
     std::vector<glm::ivec3> out;
     if (b.empty()) return out;
     glm::ivec3 lo = (b.min - grid_.origin) >> VX_NA_CHUNK_BITS, hi = (b.max - 1 - grid_.origin) >> VX_NA_CHUNK_BITS;
@@ -85,7 +85,7 @@ inline std::vector<glm::ivec3> naadf::chunks_of(const box3i& b) const {
     return out;
 }
 
-inline void naadf::apply_batch(std::span<const edit> edits, unsigned threads) {
+VOXRAY_HOST_INLINE void naadf::apply_batch(std::span<const edit> edits, unsigned threads) {
     if (edits.size() >= (1u << 20)) {  // keep the edit index in 20 bits
         apply_batch(edits.first(std::size_t(1) << 19), threads);
         return apply_batch(edits.subspan(std::size_t(1) << 19), threads);
@@ -130,7 +130,7 @@ inline void naadf::apply_batch(std::span<const edit> edits, unsigned threads) {
     });
 }
 
-inline void naadf::apply_line(glm::ivec3 a, glm::ivec3 b, int radius, edit_op op, payload_type v, unsigned threads) {
+VOXRAY_HOST_INLINE void naadf::apply_line(glm::ivec3 a, glm::ivec3 b, int radius, edit_op op, payload_type v, unsigned threads) {
     if (radius > 0) return apply(regions::capsule{a, b, radius}, op, v, threads);
     if (v == 0) op = edit_op::erase;
     std::unique_lock lock(locks_.m);
@@ -165,7 +165,7 @@ inline void naadf::apply_line(glm::ivec3 a, glm::ivec3 b, int radius, edit_op op
     });
 }
 
-inline void naadf::copy_region(box3i src, glm::ivec3 offset, edit_op op, bool replace, unsigned threads) {
+VOXRAY_HOST_INLINE void naadf::copy_region(box3i src, glm::ivec3 offset, edit_op op, bool replace, unsigned threads) {
     std::unique_lock lock(locks_.m);
     src = naadf_detail::intersect(src, grid_.bounds);
     if (src.empty()) return;
@@ -256,12 +256,12 @@ void naadf::edit_chunks(const std::vector<glm::ivec3>& chunks, unsigned threads,
 
 // Old groups are released only once a batch is committed: a group a rebuild found in the
 // table (and so did not give fields) must still be there when its chunk is committed.
-inline void naadf::finish_batch() {
+VOXRAY_HOST_INLINE void naadf::finish_batch() {
     for (std::uint32_t g : released_) groups_.release(g);
     released_.clear();
 }
 
-inline void naadf::rebuild(edited_chunk& c, const voxel_model::chunk& v, std::uint64_t blocks,
+VOXRAY_HOST_INLINE void naadf::rebuild(edited_chunk& c, const voxel_model::chunk& v, std::uint64_t blocks,
                            naadf_detail::field_cache& cache) const {
     naadf_detail::build_chunk(v, true, c.built, blocks);
     std::size_t groups = c.built.groups.size();
@@ -277,12 +277,12 @@ inline void naadf::rebuild(edited_chunk& c, const voxel_model::chunk& v, std::ui
     }
 }
 
-inline void naadf::touch(std::uint64_t slot, unsigned flags) {
+VOXRAY_HOST_INLINE void naadf::touch(std::uint64_t slot, unsigned flags) {
     if (!touched_flag_[slot]) touched_.push_back(slot);
     touched_flag_[slot] |= std::uint8_t(flags);
 }
 
-inline void naadf::open_page(std::uint64_t slot) {
+VOXRAY_HOST_INLINE void naadf::open_page(std::uint64_t slot) {
     std::uint32_t page = *store_.page_cell(slot);
     std::uint32_t index = store_.alloc_chunk_array();  // may re-lay the blob out
     std::uint32_t* array = store_.chunk_array(index);
@@ -296,7 +296,7 @@ inline void naadf::open_page(std::uint64_t slot) {
     touch(slot, VX_NA_STATE(page) == VX_NA_EMPTY ? page_was_empty : 0u);
 }
 
-inline void naadf::commit(edited_chunk& c) {
+VOXRAY_HOST_INLINE void naadf::commit(edited_chunk& c) {
     glm::ivec3 grid = c.origin - grid_.origin;
     auto g = glm::uvec3(grid);
     std::uint64_t slot = page_slot(grid);

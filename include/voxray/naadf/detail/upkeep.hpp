@@ -13,7 +13,7 @@
 
 namespace voxray {
 
-inline void naadf::settle_pages() {
+VOXRAY_HOST_INLINE void naadf::settle_pages() {
     bool table_check = false;
     for (std::uint64_t slot : touched_) {
         unsigned flags = touched_flag_[slot];
@@ -52,7 +52,7 @@ inline void naadf::settle_pages() {
     }
 }
 
-inline naadf_refine_progress naadf::refine(std::size_t budget, unsigned threads) {
+VOXRAY_HOST_INLINE naadf_refine_progress naadf::refine(std::size_t budget, unsigned threads) {
     std::unique_lock lock(locks_.m);
     // Up to `budget` pages from the back of the list, regrown in parallel (each page's
     // chunk array is its own), then their changed words marked in order.
@@ -83,7 +83,7 @@ inline naadf_refine_progress naadf::refine(std::size_t budget, unsigned threads)
     return {stale_.size(), table_stale_};
 }
 
-inline void naadf::make_room(const regions::box64& need) {
+VOXRAY_HOST_INLINE void naadf::make_room(const regions::box64& need) {
     const box3i& world = grid_.bounds;
     if (need.inside(world) || outside_ == outside_edits::clip) return;
     if (outside_ == outside_edits::fail) world_growth::refuse(world, need, "naadf");
@@ -93,7 +93,7 @@ inline void naadf::make_room(const regions::box64& need) {
 // The world grows to `world`: the same page table when it still covers it (only the
 // header moves), else a bigger table with the old pages copied to their new slots (a
 // re-layout: the blob is sent whole once).
-inline void naadf::regrid(const box3i& world) {
+VOXRAY_HOST_INLINE void naadf::regrid(const box3i& world) {
     naadf_detail::grid_placement next(world);
     if (next.origin == grid_.origin && next.pages == grid_.pages) {
         grid_ = next;
@@ -123,7 +123,7 @@ inline void naadf::regrid(const box3i& world) {
     table_stale_ = true;
 }
 
-inline naadf_stats naadf::stats() const {
+VOXRAY_HOST_INLINE naadf_stats naadf::stats() const {
     std::shared_lock lock(locks_.m);
     naadf_stats s;
     s.pages = grid_.page_count;

@@ -65,7 +65,9 @@ inline hit from_lane(const kernels::scalar::vx_hit& h) {
 
 }  // namespace cpu_detail
 
-// The stream, once per SIMD lane set (see simd_stream.inc).
+// The stream, once per SIMD lane set (see simd_stream.inc); declared only where
+// voxray::kernels holds its instances (VOXRAY_CPU_SIMD_LANES, cpu/lanes.hpp).
+#if VOXRAY_CPU_SIMD_LANES
 VOXRAY_AVX2_BEGIN
 namespace kernels::simd8 {
 #include "voxray/cpu/simd_stream.inc"
@@ -76,6 +78,22 @@ namespace kernels::simd16 {
 #include "voxray/cpu/simd_stream.inc"
 }  // namespace kernels::simd16
 VOXRAY_AVX512_END
+#else
+namespace kernels {
+// Whether voxray::kernels holds the streams of structure kernel Kernel (true for the
+// registered ones: voxray/generated/cpu_kernel_instances.hpp).
+template <class Kernel>
+inline constexpr bool linked_streams = false;
+}  // namespace kernels
+namespace kernels::simd8 {
+template <class Kernel, std::uint32_t Mode>
+void trace_stream(const std::uint32_t* blob, const voxray::ray* rays, voxray::hit* hits, std::size_t count);
+}  // namespace kernels::simd8
+namespace kernels::simd16 {
+template <class Kernel, std::uint32_t Mode>
+void trace_stream(const std::uint32_t* blob, const voxray::ray* rays, voxray::hit* hits, std::size_t count);
+}  // namespace kernels::simd16
+#endif
 
 namespace kernels::scalar {
 // The scalar kernel over a batch, one ray after another (the cpu-scalar backend, and
@@ -195,6 +213,11 @@ private:
             std::size_t begin = b * batch_rays, end = std::min(rays.size(), begin + batch_rays);
             // cpu-scalar compiles only the scalar stream: the SIMD ones exist in voxray::cpu alone.
             if constexpr (Simd) {
+#if !VOXRAY_CPU_SIMD_LANES
+                static_assert(kernels::linked_streams<Kernel>,
+                              "voxray::kernels holds the SIMD streams of the structures registered with "
+                              "voxray_add_structure only: register this one, or leave voxray::kernels unlinked");
+#endif
                 if (width_ == 16)
                     return kernels::simd16::trace_stream<Kernel, Mode>(blob, &rays[begin], &hits[begin], end - begin);
                 if (width_ == 8)

@@ -16,7 +16,20 @@
 #include <type_traits>
 #include <utility>
 
+// The SIMD lane sets are compiled here unless the program links voxray::kernels, which
+// holds the SIMD streams of every registered structure: then only the scalar lanes are
+// (tracer::closest_hit of one ray, the world's frame passes). A file that works with the
+// lanes themselves may define VOXRAY_CPU_SIMD_LANES 1.
+#if !defined(VOXRAY_CPU_SIMD_LANES)
+#if defined(VOXRAY_CPU_KERNELS_LINKED)
+#define VOXRAY_CPU_SIMD_LANES 0
+#else
+#define VOXRAY_CPU_SIMD_LANES 1
+#endif
+#endif
+#if VOXRAY_CPU_SIMD_LANES
 #include <immintrin.h>
+#endif
 
 #include "voxray/kernels/prelude.h"
 
@@ -103,6 +116,7 @@ inline bool cpu_has_avx512() {
     return has;
 }
 
+#if VOXRAY_CPU_SIMD_LANES
 VOXRAY_AVX2_BEGIN
 #define VX_SIMD_WIDTH 8
 namespace simd8 {
@@ -118,6 +132,7 @@ namespace simd16 {
 }  // namespace simd16
 #undef VX_SIMD_WIDTH
 VOXRAY_AVX512_END
+#endif
 
 }  // namespace voxray::kernels
 

@@ -6,6 +6,7 @@
 
 #include <vulkan/vulkan.h>
 
+#include "voxray/core/host_code.hpp"
 #include "voxray/vulkan/check.hpp"
 #include "voxray/vulkan/device.hpp"
 
@@ -13,52 +14,16 @@ namespace voxray::vulkan_detail {
 
 class command_stream {
 public:
-    explicit command_stream(const context& ctx) : device_(ctx.device()), queue_(ctx.queue()), queue_lock_(&ctx.queue_lock()) {
-        try {
-            auto pool = vk_struct<VkCommandPoolCreateInfo>(VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO);
-            pool.flags = VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT;
-            pool.queueFamilyIndex = ctx.queue_family();
-            vk_check(vkCreateCommandPool(device_, &pool, nullptr, &pool_), "vkCreateCommandPool");
-            auto alloc = vk_struct<VkCommandBufferAllocateInfo>(VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO);
-            alloc.commandPool = pool_;
-            alloc.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
-            alloc.commandBufferCount = 1;
-            vk_check(vkAllocateCommandBuffers(device_, &alloc, &commands_), "vkAllocateCommandBuffers");
-            auto fence = vk_struct<VkFenceCreateInfo>(VK_STRUCTURE_TYPE_FENCE_CREATE_INFO);
-            vk_check(vkCreateFence(device_, &fence, nullptr, &fence_), "vkCreateFence");
-        } catch (...) {
-            destroy();
-            throw;
-        }
-    }
+    explicit command_stream(const context& ctx);
     ~command_stream() { destroy(); }
     command_stream(const command_stream&) = delete;
     command_stream& operator=(const command_stream&) = delete;
 
     // Starts recording; the previous submission has completed (submit_and_wait).
-    VkCommandBuffer begin() {
-        vk_check(vkResetCommandBuffer(commands_, 0), "vkResetCommandBuffer");
-        auto info = vk_struct<VkCommandBufferBeginInfo>(VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO);
-        info.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
-        vk_check(vkBeginCommandBuffer(commands_, &info), "vkBeginCommandBuffer");
-        return commands_;
-    }
+    VkCommandBuffer begin();
 
     // Ends recording, submits, and blocks until the device has finished.
-    void submit_and_wait() {
-        vk_check(vkEndCommandBuffer(commands_), "vkEndCommandBuffer");
-        auto submit = vk_struct<VkSubmitInfo>(VK_STRUCTURE_TYPE_SUBMIT_INFO);
-        submit.commandBufferCount = 1;
-        submit.pCommandBuffers = &commands_;
-        vk_check(vkResetFences(device_, 1, &fence_), "vkResetFences");
-        {
-            std::lock_guard guard(*queue_lock_);  // other tracers on this device share the queue
-            vk_check(vkQueueSubmit(queue_, 1, &submit, fence_), "vkQueueSubmit");
-        }
-        // No timeout: a long trace on a slow (CPU) device is legitimate, and a lost
-        // device returns VK_ERROR_DEVICE_LOST rather than hanging.
-        vk_check(vkWaitForFences(device_, 1, &fence_, VK_TRUE, UINT64_MAX), "vkWaitForFences");
-    }
+    void submit_and_wait();
 
     // A memory dependency between two pipeline stages, for all buffers.
     static void barrier(VkCommandBuffer cmd, VkPipelineStageFlags src_stage, VkAccessFlags src_access,
@@ -86,3 +51,8 @@ private:
 };
 
 }  // namespace voxray::vulkan_detail
+
+// The definitions: here, or compiled once in voxray::kernels (core/host_code.hpp).
+#if VOXRAY_HOST_DEFINITIONS
+#include "voxray/vulkan/detail/commands.hpp"
+#endif

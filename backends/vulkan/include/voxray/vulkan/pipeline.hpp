@@ -9,6 +9,7 @@
 
 #include <vulkan/vulkan.h>
 
+#include "voxray/core/host_code.hpp"
 #include "voxray/vulkan/check.hpp"
 #include "voxray/vulkan/device.hpp"
 
@@ -42,27 +43,9 @@ class compute_pipeline {
 public:
     // `push_bytes`: size of the push constant record its shader declares (the commit and
     // pass shaders have their own).
-    compute_pipeline(const context& ctx, std::span<const std::uint32_t> spirv, std::uint32_t push_bytes)
-        : device_(ctx.device()), push_bytes_(push_bytes) {
-        try {
-            create(spirv, nullptr);
-        } catch (...) {
-            destroy();
-            throw;
-        }
-    }
+    compute_pipeline(const context& ctx, std::span<const std::uint32_t> spirv, std::uint32_t push_bytes);
     // A trace shader's pipeline (push_constants above) for one trace mode.
-    compute_pipeline(const context& ctx, std::span<const std::uint32_t> spirv, trace_mode mode)
-        : device_(ctx.device()), push_bytes_(sizeof(push_constants)) {
-        VkSpecializationMapEntry entry{trace_mode_constant_id, 0, sizeof(std::uint32_t)};
-        VkSpecializationInfo constants{1, &entry, sizeof(std::uint32_t), &mode.value};
-        try {
-            create(spirv, &constants);
-        } catch (...) {
-            destroy();
-            throw;
-        }
-    }
+    compute_pipeline(const context& ctx, std::span<const std::uint32_t> spirv, trace_mode mode);
     ~compute_pipeline() { destroy(); }
     compute_pipeline(const compute_pipeline&) = delete;
     compute_pipeline& operator=(const compute_pipeline&) = delete;
@@ -76,32 +59,7 @@ public:
     }
 
 private:
-    void create(std::span<const std::uint32_t> spirv, const VkSpecializationInfo* constants) {
-        auto module_info = vk_struct<VkShaderModuleCreateInfo>(VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO);
-        module_info.codeSize = spirv.size_bytes();
-        module_info.pCode = spirv.data();
-        vk_check(vkCreateShaderModule(device_, &module_info, nullptr, &module_), "vkCreateShaderModule");
-
-        // At most 32 bytes: within the 128 bytes every device must offer.
-        VkPushConstantRange range{VK_SHADER_STAGE_COMPUTE_BIT, 0, push_bytes_};
-        auto layout_info = vk_struct<VkPipelineLayoutCreateInfo>(VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO);
-        layout_info.pushConstantRangeCount = 1;
-        layout_info.pPushConstantRanges = &range;
-        vk_check(vkCreatePipelineLayout(device_, &layout_info, nullptr, &layout_), "vkCreatePipelineLayout");
-
-        auto info = vk_struct<VkComputePipelineCreateInfo>(VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO);
-        info.stage.sType = VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO;
-        info.stage.stage = VK_SHADER_STAGE_COMPUTE_BIT;
-        info.stage.module = module_;
-        info.stage.pName = "main";
-        info.stage.pSpecializationInfo = constants;
-        info.layout = layout_;
-        vk_check(vkCreateComputePipelines(device_, VK_NULL_HANDLE, 1, &info, nullptr, &pipeline_),
-                 "vkCreateComputePipelines");
-        // The module is only needed while the pipeline is created.
-        vkDestroyShaderModule(device_, module_, nullptr);
-        module_ = VK_NULL_HANDLE;
-    }
+    void create(std::span<const std::uint32_t> spirv, const VkSpecializationInfo* constants);
 
     void destroy() {
         if (pipeline_) vkDestroyPipeline(device_, pipeline_, nullptr);
@@ -120,3 +78,8 @@ private:
 };
 
 }  // namespace voxray::vulkan_detail
+
+// The definitions: here, or compiled once in voxray::kernels (core/host_code.hpp).
+#if VOXRAY_HOST_DEFINITIONS
+#include "voxray/vulkan/detail/pipeline.hpp"
+#endif

@@ -1,0 +1,25 @@
+// Host code (builders, edits, loaders) is either compiled in every file that uses it
+// (header-only, the default) or once, in the voxray::kernels library, which a program
+// links instead. Its out-of-line definitions live in a module's detail/ headers, marked
+// VOXRAY_HOST_INLINE, and the public header includes them only where
+// VOXRAY_HOST_DEFINITIONS is 1:
+//
+//   the file is ...                         macro set         definitions   VOXRAY_HOST_INLINE
+//   header-only (nothing defined)           -                 included      inline
+//   in a target linking voxray::kernels     VOXRAY_HOST_LINKED  not seen    (declarations only)
+//   voxray::kernels' own host.cpp           VOXRAY_HOST_COMPILING  included  (nothing: the one definition)
+//
+// A program links voxray::kernels in every target that uses the host code, or in none:
+// the two modes give the same functions, one inline and one not.
+#pragma once
+
+#if defined(VOXRAY_HOST_COMPILING)
+#define VOXRAY_HOST_DEFINITIONS 1
+#define VOXRAY_HOST_INLINE
+#elif defined(VOXRAY_HOST_LINKED)
+#define VOXRAY_HOST_DEFINITIONS 0
+#define VOXRAY_HOST_INLINE
+#else
+#define VOXRAY_HOST_DEFINITIONS 1
+#define VOXRAY_HOST_INLINE inline
+#endif
