@@ -19,12 +19,21 @@ for s in $SCENES; do
 done
 
 install_packages
+# From the repository's root with relative paths, so that the command the results file
+# records names no directory of this machine (docs must not: tests/docs).
+cd "$ROOT"
+rel() { realpath -m --relative-to="$ROOT" "$1"; }
+scenes=()
+for s in $SCENES; do
+    if [[ "$s" == builtin:* ]]; then scenes+=("$s"); else scenes+=("$(rel "$s")"); fi
+done
+TOOL="$(rel "$BUILD_DIR")/voxray" OUT="$(rel "$OUT")"
 echo "== configure and build the tool ($BUILD_DIR)"
 cmake -S "$ROOT" -B "$BUILD_DIR" -DCMAKE_BUILD_TYPE=Release -DVOXRAY_REQUIRE_ALL_BACKENDS=ON ${CMAKE_EXTRA:-} >/dev/null
 cmake --build "$BUILD_DIR" -j"$(nproc)" --target voxray_tool
 mkdir -p "$OUT"
 echo "== matrix: $WIDTH x $HEIGHT, $RUNS runs"
 # bench exits 1 when a row disagrees or fails; the table shows which, so go on.
-"$BUILD_DIR/voxray" bench $SCENES --resolution "$RESOLUTION" --width "$WIDTH" --height "$HEIGHT" --runs "$RUNS" \
+"$TOOL" bench "${scenes[@]}" --resolution "$RESOLUTION" --width "$WIDTH" --height "$HEIGHT" --runs "$RUNS" \
     --out "$OUT/results.jsonl" || echo "== some rows disagree or failed: see the mismatches column"
-/usr/bin/python3 "$ROOT/scripts/plot_bench.py" "$OUT/results.jsonl" --out "$OUT"
+/usr/bin/python3 scripts/plot_bench.py "$OUT/results.jsonl" --out "$OUT"

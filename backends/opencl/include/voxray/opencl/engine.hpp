@@ -20,6 +20,8 @@
 #include "voxray/opencl/buffer.hpp"
 #include "voxray/opencl/commit.hpp"
 #include "voxray/opencl/interop.hpp"
+#include "voxray/opencl/launch.hpp"
+#include "voxray/opencl/passes.hpp"
 #include "voxray/opencl/program_cache.hpp"
 #include "voxray/sync/dirty_ranges.hpp"
 #include "voxray/sync/upload_plan.hpp"
@@ -41,10 +43,6 @@ constexpr bool has_program(std::string_view name) {
         if (p.name == name) return true;
     return false;
 }
-
-// Work-items per group. 64 fills a wavefront (AMD) or two warps (NVIDIA) and is a
-// multiple of every common SIMD width; the kernel may allow less (register pressure).
-inline constexpr std::size_t preferred_group_size = 64;
 
 template <class Kernel>
 class opencl_engine {
@@ -68,7 +66,8 @@ public:
         closest_ = create_kernel(program, std::string("vx_closest_") + Kernel::name);
         any_ = create_kernel(program, std::string("vx_any_") + Kernel::name);
         // Both kernels come from one source; the smaller limit serves both.
-        local_size_ = std::min(group_size_for(closest_.get()), group_size_for(any_.get()));
+        local_size_ =
+            std::min(group_size_for(closest_.get(), ctx_->device()), group_size_for(any_.get(), ctx_->device()));
     }
 
     // Copies the blob to the device (blocking: the caller's span may die right after).
@@ -179,55 +178,18 @@ public:
         if (count > 0) enqueue_trace(rays, hits, cl_uint(count), mode);
     }
 
-    // Frame passes (structures registered with PASSES; world/frame/frame.hpp drives them): a
-    // frame buffer of words (grow-only; growing drops its contents), host access to it,
-    // and one pass run to completion. The kernel is vx_pass_<name> in the structure's program.
-    void frame_reserve(std::size_t words) {
-        std::uint64_t bytes = std::max<std::uint64_t>(std::uint64_t(words) * 4, 8);
-        check_alloc_limit("the frame buffer", bytes, ctx_->max_alloc_bytes(), ctx_->device_name());
-        frame_.reserve(ctx_->context(), bytes);
-    }
-    void frame_write(std::size_t at, std::span<const std::uint32_t> words) {
-        check_frame_range(at, words.size());
-        if (words.empty()) return;
-        check(clEnqueueWriteBuffer(queue_.get(), frame_.get(), CL_TRUE, at * 4, words.size_bytes(), words.data(), 0,
-                                   nullptr, nullptr),
-              "clEnqueueWriteBuffer", "writing frame words");
-    }
-    void frame_read(std::size_t at, std::span<std::uint32_t> words) {
-        check_frame_range(at, words.size());
-        if (words.empty()) return;
-        check(clEnqueueReadBuffer(queue_.get(), frame_.get(), CL_TRUE, at * 4, words.size_bytes(), words.data(), 0,
-                                  nullptr, nullptr),
-              "clEnqueueReadBuffer", "reading frame words");
-    }
+    // Frame passes (structures registered with PASSES; world/frame/frame.hpp drives them):
+    // a pass_runner (opencl/passes.hpp) on this engine's device, queue, program and blob.
+    // The kernel is vx_pass_<name> in the structure's program.
+    void frame_reserve(std::size_t words) { passes_.reserve(*ctx_, words); }
+    void frame_write(std::size_t at, std::span<const std::uint32_t> words) { passes_.write(queue_.get(), at, words); }
+    void frame_read(std::size_t at, std::span<std::uint32_t> words) { passes_.read(queue_.get(), at, words); }
     void run_pass(std::uint32_t pass, std::uint64_t count) {
         if (!uploaded_) fail("OpenCL: a frame pass ran before any structure was uploaded");
-        if (!frame_.get()) fail("OpenCL: a frame pass ran before the frame buffer was reserved");
-        if (count == 0) return;
-        if (count > std::numeric_limits<cl_uint>::max() - local_size_)
-            fail("OpenCL: ", count, " items in one frame pass, more than its 32-bit count allows");
-        if (!pass_) {
-            // The visibility buffer's nearest hit is a 64-bit atomic max (world/frame/passes.h).
-            if (device_string(ctx_->device(), CL_DEVICE_EXTENSIONS).find("cl_khr_int64_extended_atomics") == std::string::npos)
-                fail("OpenCL: the frame passes need cl_khr_int64_extended_atomics, which ", ctx_->device_name(),
-                     " does not offer");
-            pass_ = create_kernel(ctx_->program(program_), std::string("vx_pass_") + Kernel::name);
-        }
-        cl_mem blob = blob_.get(), frame = frame_.get();
-        cl_uint n = cl_uint(count);
-        check(clSetKernelArg(pass_.get(), 0, sizeof blob, &blob), "clSetKernelArg", "setting the blob");
-        check(clSetKernelArg(pass_.get(), 1, sizeof frame, &frame), "clSetKernelArg", "setting the frame");
-        check(clSetKernelArg(pass_.get(), 2, sizeof pass, &pass), "clSetKernelArg", "setting the pass");
-        check(clSetKernelArg(pass_.get(), 3, sizeof n, &n), "clSetKernelArg", "setting the count");
-        std::size_t local = std::min(local_size_, group_size_for(pass_.get()));
-        std::size_t global = (std::size_t(n) + local - 1) / local * local;
-        check(clEnqueueNDRangeKernel(queue_.get(), pass_.get(), 1, nullptr, &global, &local, 0, nullptr, nullptr),
-              "clEnqueueNDRangeKernel", "running frame pass " + std::to_string(pass));
-        check(clFinish(queue_.get()), "clFinish", "running frame pass " + std::to_string(pass));
+        passes_.run(*ctx_, queue_.get(), ctx_->program(program_), std::string("vx_pass_") + Kernel::name, blob_.get(),
+                    pass, count, local_size_);
     }
-    // Bytes of device memory the frame buffer holds.
-    std::uint64_t frame_bytes() const { return frame_.capacity(); }
+    std::uint64_t frame_bytes() const { return passes_.bytes(); }
 
     std::string device_name() const { return ctx_->device_name(); }
     std::string platform_name() const { return ctx_->platform_name(); }
@@ -238,12 +200,6 @@ public:
     std::size_t work_group_size() const { return local_size_; }
 
 private:
-
-    void check_frame_range(std::size_t at, std::size_t n) const {
-        if ((at + n) * 4 > frame_.capacity())
-            fail("OpenCL: frame words [", at, ", ", at + n, ") outside the frame buffer's ", frame_.capacity() / 4, " words");
-    }
-
     // Kernel arguments are captured at enqueue time, so the kernel object is free for the
     // next call at once.
     void enqueue_trace(cl_mem in, cl_mem out, cl_uint count, std::uint32_t mode) {
@@ -259,42 +215,15 @@ private:
               "clEnqueueNDRangeKernel", "tracing " + std::to_string(count) + " rays");
     }
 
-    kernel_handle create_kernel(cl_program program, const std::string& entry) const {
-        cl_int status = CL_SUCCESS;
-        kernel_handle kernel(clCreateKernel(program, entry.c_str(), &status));
-        check(status, "clCreateKernel", "looking up " + entry + " (backends/opencl/kernels/entry.cl)");
-        return kernel;
-    }
-
-    std::size_t group_size_for(cl_kernel kernel) const {
-        std::size_t kernel_max = 0, multiple = 1;
-        check(clGetKernelWorkGroupInfo(kernel, ctx_->device(), CL_KERNEL_WORK_GROUP_SIZE, sizeof kernel_max,
-                                       &kernel_max, nullptr),
-              "clGetKernelWorkGroupInfo");
-        check(clGetKernelWorkGroupInfo(kernel, ctx_->device(), CL_KERNEL_PREFERRED_WORK_GROUP_SIZE_MULTIPLE,
-                                       sizeof multiple, &multiple, nullptr),
-              "clGetKernelWorkGroupInfo");
-        return choose_group_size(kernel_max, multiple);
-    }
-
-    // The largest multiple of the device's preferred multiple that is at most
-    // preferred_group_size and allowed for this kernel; at least 1.
-    static std::size_t choose_group_size(std::size_t kernel_max, std::size_t multiple) {
-        std::size_t limit = std::min(preferred_group_size, std::max<std::size_t>(kernel_max, 1));
-        multiple = std::max<std::size_t>(multiple, 1);
-        return multiple <= limit ? limit / multiple * multiple : limit;
-    }
-
     std::shared_ptr<device_context> ctx_;
     queue_handle queue_;
     kernel_handle closest_, any_;
-    kernel_handle pass_;  // vx_pass_<name>, looked up on the first frame pass
     committer committer_;
     // Read-write: the commit kernel writes it; the trace kernels only read it.
     device_buffer blob_{CL_MEM_READ_WRITE, "the structure blob"};
     device_buffer rays_{CL_MEM_READ_ONLY, "rays"};
     device_buffer hits_{CL_MEM_WRITE_ONLY, "hits"};
-    device_buffer frame_{CL_MEM_READ_WRITE, "the frame buffer"};
+    pass_runner passes_;
     std::size_t local_size_ = 1;
     bool uploaded_ = false;
     std::size_t blob_words_ = 0;
