@@ -4,10 +4,10 @@
 // VOXRAY_HOST_INLINE, and the public header includes them only where
 // VOXRAY_HOST_DEFINITIONS is 1:
 //
-//   the file is ...                         macro set         definitions   VOXRAY_HOST_INLINE
-//   header-only (nothing defined)           -                 included      inline
-//   in a target linking voxray::kernels     VOXRAY_HOST_LINKED  not seen    (declarations only)
-//   voxray::kernels' own host.cpp           VOXRAY_HOST_COMPILING  included  (nothing: the one definition)
+//   file                              defined                 definitions     VOXRAY_HOST_INLINE
+//   header-only use (the default)     nothing                 seen, inline    inline
+//   a target linking voxray::kernels  VOXRAY_HOST_LINKED      not seen        (empty)
+//   the library's generated host.cpp  VOXRAY_HOST_COMPILING   seen, the one   (empty)
 //
 // A program links voxray::kernels in every target that uses the host code, or in none:
 // the two modes give the same functions, one inline and one not.

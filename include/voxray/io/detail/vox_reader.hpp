@@ -15,7 +15,6 @@
 
 namespace voxray::io {
 
-// Parses and composes a .vox file held in memory; `name_for_errors` prefixes messages.
 VOXRAY_HOST_INLINE vox_scene read_vox_scene(std::span<const std::uint8_t> bytes, std::string_view name_for_errors,
                                             const vox_options& options) {
     vox_file file = parse_vox_chunks(bytes, name_for_errors);
@@ -42,7 +41,6 @@ VOXRAY_HOST_INLINE voxel_model read_vox(std::span<const std::uint8_t> bytes, std
     return std::move(read_vox_scene(bytes, name_for_errors, options).model);
 }
 
-// The whole file as bytes; throws voxray::error when it cannot be read.
 VOXRAY_HOST_INLINE std::vector<std::uint8_t> read_file_bytes(const std::filesystem::path& path) {
     std::error_code ec;
     auto size = std::filesystem::file_size(path, ec);
