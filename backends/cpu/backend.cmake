@@ -94,15 +94,18 @@ VOXRAY_CPU_STREAM_INSTANCES(, ${lanes}, voxray::kernels::${name}_kernel)
     # The host code (core/host_code.hpp): the public headers that include host_code.hpp,
     # compiled once, in files where their definitions are the program's only ones. One
     # file for the core and one per backend whose headers have host code; such a file
-    # takes the backend's include directories and own dependencies (Vulkan::Vulkan), not
-    # its voxray target, whose VOXRAY_LINKED_* would change what the program registers.
+    # takes the backend's include directories, definitions and own dependencies
+    # (Vulkan::Vulkan, OpenCL::OpenCL), not its voxray target, whose VOXRAY_LINKED_* would
+    # change what the program registers.
     set(host_sources "")
     voxray_host_source(${dir}/host.cpp ${PROJECT_SOURCE_DIR}/include)
     foreach(backend target IN ZIP_LISTS VOXRAY_BACKENDS VOXRAY_BACKEND_TARGETS)
         voxray_host_source(${dir}/host_${backend}.cpp ${PROJECT_SOURCE_DIR}/backends/${backend}/include)
         if(host_source)
+            get_target_property(defines ${target} INTERFACE_COMPILE_DEFINITIONS)
+            list(FILTER defines EXCLUDE REGEX "^VOXRAY_LINKED_")
             set_source_files_properties(${host_source} PROPERTIES
-                INCLUDE_DIRECTORIES ${PROJECT_SOURCE_DIR}/backends/${backend}/include)
+                INCLUDE_DIRECTORIES ${PROJECT_SOURCE_DIR}/backends/${backend}/include COMPILE_DEFINITIONS "${defines}")
             list(APPEND host_targets ${target})
         endif()
     endforeach()

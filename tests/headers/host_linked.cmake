@@ -8,12 +8,16 @@ set(called
     "voxray::naadf::refine\\("
     "voxray::vulkan_detail::shared_context\\("
     "voxray::vulkan_detail::command_stream::submit_and_wait\\("
+    "voxray::opencl_detail::acquire_device_context\\("
+    "voxray::opencl_detail::committer::commit\\("
     "voxray::kernels::simd16::trace_stream<")
 set(compiled_here_too
     "voxray::io::"
     "voxray::naadf::(naadf\\(|apply_batch|refine|commit|rebuild|settle_pages)"
     "voxray::naadf_detail::build"
     "voxray::vulkan_detail::(choose_device|inspect|shared_context|instance::create|context::|buffer::create|command_stream::|committer::commit|compute_pipeline::create)"
+    "voxray::opencl_detail::(select_device|check_user_context|acquire_device_context|cl_status_name)\\("
+    "voxray::opencl_detail::(device_context::(device_context|build|build_log|read_device)|committer::(commit|create_kernel)|pass_runner::(run|read|write))\\("
     "voxray::kernels::simd(8|16)::")
 execute_process(COMMAND ${NM} -C --undefined-only ${OBJECT} OUTPUT_VARIABLE undefined RESULT_VARIABLE r1)
 execute_process(COMMAND ${NM} -C --defined-only ${OBJECT} OUTPUT_VARIABLE defined RESULT_VARIABLE r2)
