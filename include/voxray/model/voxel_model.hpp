@@ -93,6 +93,13 @@ public:
         return it == chunks_.end() ? 0 : it->second->voxels[local_index(p)];
     }
 
+    // The 16^3 chunk holding voxel p, or null where that chunk is empty.
+    const chunk* find_chunk(glm::ivec3 p) const {
+        if (!in_range(p)) return nullptr;
+        auto it = chunks_.find(chunk_key(p >> chunk_bits));
+        return it == chunks_.end() ? nullptr : it->second.get();
+    }
+
     std::uint64_t voxel_count() const { return count_; }
     std::size_t chunk_count() const { return chunks_.size(); }
 

@@ -5,6 +5,8 @@
 //   terrain[:SIZE][:seed=N][:skin=N]   SIZE = footprint edge, 64..8192 (default 1024)
 //                                      seed = any unsigned 64-bit number (default 1)
 //                                      skin = voxels under each column top, 1..64 (default 4)
+//   sphere30, checker, noise50, terrain64
+//                                      one 64^3 chunk each, for the mesher (chunk_scenes.hpp)
 //   menger[:SIZE]                      SIZE = cell * 3^level, level 1..7, cell 1..8 and not a
 //                                      multiple of 3: the edge in voxels (default 486 =
 //                                      level 5 with 2-voxel cells; 729 = level 6, 64 M voxels)
@@ -21,13 +23,14 @@
 
 #include "voxray/core/error.hpp"
 #include "voxray/model/voxel_model.hpp"
+#include "voxray/scenes/chunk_scenes.hpp"
 #include "voxray/scenes/menger.hpp"
 #include "voxray/scenes/terrain.hpp"
 
 namespace voxray::scenes {
 
 inline const std::vector<std::string_view>& builtin_names() {
-    static const std::vector<std::string_view> names{"terrain", "menger"};
+    static const std::vector<std::string_view> names{"terrain", "menger", "sphere30", "checker", "noise50", "terrain64"};
     return names;
 }
 
@@ -104,6 +107,10 @@ inline voxel_model make_builtin(std::string_view spec, unsigned threads = 0) {
         }
         for (auto [key, value] : p.options) unknown_option(key, "none");
         return make_menger(opt);
+    }
+    if (is_chunk_scene(p.name)) {
+        if (!p.size.empty() || !p.options.empty()) fail("scene spec '", spec, "': '", p.name, "' takes no size or options");
+        return make_chunk_scene(p.name);
     }
     std::string names;
     for (auto n : builtin_names()) names += (names.empty() ? "" : ", ") + std::string(n);

@@ -1,0 +1,52 @@
+// Models for the mesher's tests: blobs of a few materials that merge into large quads and
+// cross chunk sides, at negative coordinates too; and the chunks a model touches.
+#pragma once
+#include <set>
+#include <tuple>
+#include <vector>
+
+#include "voxray/meshing/chunk.hpp"
+#include "voxray/model/voxel_model.hpp"
+#include "voxray/scenes/noise.hpp"
+
+namespace voxray::test {
+
+// `count` boxes and balls of materials 1..materials inside `bounds`, with a sprinkle of
+// single voxels (T-junctions and unit quads everywhere).
+inline voxel_model blob_model(std::uint64_t seed, box3i bounds, int count = 12, int materials = 3) {
+    voxel_model m;
+    scenes::rng g{seed};
+    glm::ivec3 e = bounds.extent();
+    for (int i = 0; i < count; ++i) {
+        glm::ivec3 c = bounds.min + glm::ivec3(g.range(0, e.x - 1), g.range(0, e.y - 1), g.range(0, e.z - 1));
+        int r = g.range(2, 18);
+        auto material = std::uint8_t(g.range(1, materials));
+        bool ball = g.uniform() < 0.5;
+        for (int z = -r; z <= r; ++z)
+            for (int y = -r; y <= r; ++y)
+                for (int x = -r; x <= r; ++x) {
+                    glm::ivec3 p = c + glm::ivec3(x, y, z);
+                    if (!bounds.contains(p)) continue;
+                    if (ball && x * x + y * y + z * z > r * r) continue;
+                    m.set(p, material);
+                }
+    }
+    for (int i = 0; i < count * 40; ++i)
+        m.set(bounds.min + glm::ivec3(g.range(0, e.x - 1), g.range(0, e.y - 1), g.range(0, e.z - 1)),
+              std::uint8_t(g.range(0, materials)));
+    return m;
+}
+
+// Origins of the chunks that hold a voxel of the model.
+inline std::vector<glm::ivec3> chunk_origins(const voxel_model& m) {
+    std::set<std::tuple<int, int, int>> seen;
+    m.for_each_chunk([&](glm::ivec3 origin, const voxel_model::chunk&) {
+        glm::ivec3 c = meshing::chunk_of(origin);
+        seen.insert({c.x, c.y, c.z});
+    });
+    std::vector<glm::ivec3> out;
+    for (auto [x, y, z] : seen) out.push_back(meshing::chunk_origin({x, y, z}));
+    return out;
+}
+
+}  // namespace voxray::test
