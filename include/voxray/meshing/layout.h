@@ -62,6 +62,7 @@
 #define VX_MESH_LEVEL(w1) (((w1) >> 27) & 7u)
 #define VX_MESH_WORD1(material, ao_bits, face, level) \
     ((material) | ((ao_bits) << 16) | ((face) << 24) | ((level) << 27))
+#define VX_MESH_WITH_LEVEL(w1, level) (((w1) & ~(7u << 27)) | ((level) << 27))
 #define VX_MESH_AO_OPEN 0xFFu   /* all four corners 3 */
 
 /* The axes of a face: its normal, and u, v as above. */
