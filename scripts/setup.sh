@@ -6,7 +6,8 @@ set -euo pipefail
 PACKAGES=(cmake make g++ libglm-dev libembree-dev libtbb-dev opencl-headers opencl-clhpp-headers
           ocl-icd-opencl-dev pocl-opencl-icd clinfo libvulkan-dev mesa-vulkan-drivers vulkan-tools
           glslang-tools spirv-tools libgtest-dev libbenchmark-dev clang-14 libclang-rt-14-dev
-          libnanovdb-dev libcli11-dev nlohmann-json3-dev libstb-dev python3-matplotlib)
+          libnanovdb-dev libcli11-dev nlohmann-json3-dev libstb-dev python3-matplotlib libtinygltf-dev
+          libmeshoptimizer-dev)
 
 ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 BUILD_DIR="${BUILD_DIR:-$ROOT/build}"

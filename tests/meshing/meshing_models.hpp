@@ -1,11 +1,7 @@
 // Models for the mesher's tests: blobs of a few materials that merge into large quads and
-// cross chunk sides, at negative coordinates too; and the chunks a model touches.
+// cross chunk sides, at negative coordinates too.
 #pragma once
-#include <set>
-#include <tuple>
-#include <vector>
-
-#include "voxray/meshing/chunk.hpp"
+#include "voxray/core/box.hpp"
 #include "voxray/model/voxel_model.hpp"
 #include "voxray/scenes/noise.hpp"
 
@@ -35,18 +31,6 @@ inline voxel_model blob_model(std::uint64_t seed, box3i bounds, int count = 12, 
         m.set(bounds.min + glm::ivec3(g.range(0, e.x - 1), g.range(0, e.y - 1), g.range(0, e.z - 1)),
               std::uint8_t(g.range(0, materials)));
     return m;
-}
-
-// Origins of the chunks that hold a voxel of the model.
-inline std::vector<glm::ivec3> chunk_origins(const voxel_model& m) {
-    std::set<std::tuple<int, int, int>> seen;
-    m.for_each_chunk([&](glm::ivec3 origin, const voxel_model::chunk&) {
-        glm::ivec3 c = meshing::chunk_of(origin);
-        seen.insert({c.x, c.y, c.z});
-    });
-    std::vector<glm::ivec3> out;
-    for (auto [x, y, z] : seen) out.push_back(meshing::chunk_origin({x, y, z}));
-    return out;
 }
 
 }  // namespace voxray::test

@@ -19,7 +19,7 @@ std::vector<meshing::chunk_mesh> mesh_model(const voxel_model& model, bool ao) {
     meshing::mesher mesher({.ambient_occlusion = ao});
     meshing::chunk_voxels c;
     std::vector<std::uint8_t> scratch;
-    for (glm::ivec3 origin : test::chunk_origins(model)) {
+    for (glm::ivec3 origin : meshing::chunk_origins(model)) {
         meshing::fill_chunk(model, origin, c, scratch);
         meshes.push_back(mesher.mesh(c));
     }

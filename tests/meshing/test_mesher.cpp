@@ -52,7 +52,7 @@ TEST(mesher, chunk_scenes_give_the_brute_force_face_set) {
 TEST(mesher, blobs_across_chunk_sides_and_negative_coordinates) {
     for (std::uint64_t seed : {1u, 2u, 3u}) {
         voxel_model model = test::blob_model(seed, box3i{{-90, -70, -66}, {70, 60, 64}});
-        for (glm::ivec3 origin : test::chunk_origins(model)) {
+        for (glm::ivec3 origin : meshing::chunk_origins(model)) {
             chunk_voxels c = chunk_at(model, origin);
             std::string what = "seed " + std::to_string(seed) + " chunk at (" + std::to_string(origin.x) + ", " +
                                std::to_string(origin.y) + ", " + std::to_string(origin.z) + ")";

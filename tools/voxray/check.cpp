@@ -8,6 +8,7 @@
 
 #include "cli.hpp"
 #include "edits.hpp"
+#include "mesh_check.hpp"
 #include "engines.hpp"
 #include "output.hpp"
 #include "scene.hpp"
@@ -24,6 +25,8 @@ struct check_options {
     std::uint64_t seed = 1;
     int edits = 0;
     std::string structures = exact_structure_names(), backends, json;
+    bool mesh = false;
+    mesh_check_options mesh_options;
 };
 
 void print_hit(const char* label, const hit& h) {
@@ -58,6 +61,11 @@ int check(const check_options& o) {
     if (!o.json.empty()) require_writable(o.json, "--json");
     auto model = load_scene(o.scene.scenes[0], o.scene);
     box3i world = model.bounds();
+    if (o.mesh) {
+        std::uint64_t mismatches = check_mesh(model, o.mesh_options);
+        std::printf("mesh check of %s: %llu mismatches\n", scene_label(o.scene.scenes[0]).c_str(), (unsigned long long)mismatches);
+        return mismatches == 0 ? 0 : 1;
+    }
 
     // Every pair is set up before any edit, so that edits reach it through update().
     std::vector<std::shared_ptr<slot>> structures;
@@ -141,7 +149,10 @@ command add_check(CLI::App& parent) {
     app->add_option("--edits", o->edits, "random region edits applied before tracing")
         ->check(CLI::Range(0, 100000))->capture_default_str();
     app->add_option("--json", o->json, "also write the per-pair counts to this JSON file");
-    return {app, [o] { return check(*o); }};
+    app->add_flag("--mesh", o->mesh, "check the scene's chunk meshes instead: face sets, POP order, cracks");
+    app->add_option("--mesh-views", o->mesh_options.views, "random views of the mesh crack tests")
+        ->check(CLI::Range(1, 10000000))->capture_default_str();
+    return {app, [o] { o->mesh_options.seed = o->seed; return check(*o); }};
 }
 
 }  // namespace voxray::tool

@@ -12,12 +12,13 @@ int main(int argc, char** argv) {
     using namespace voxray::tool;
     CLI::App app{"voxray: voxel ray tracing structures x backends on any scene.\n"
                  "SCENE: a .vox, .obj or .ply file (meshes take --resolution) or builtin:NAME[:SIZE] "
-                 "(builtin:terrain, builtin:menger)"};
+                 "(builtin:terrain, builtin:menger; one 64^3 chunk: builtin:sphere30, checker, noise50, terrain64)"};
     app.require_subcommand(1);  // --version answers without one
     app.set_help_all_flag("--help-all", "help for every command");
     app.set_version_flag("--version", std::string("voxray ") + VOXRAY_VERSION_STRING);
     std::vector<command> commands = {add_info(app),  add_render(app),      add_check(app),
-                                     add_bench(app), add_world_build(app), add_world_fly(app)};
+                                     add_bench(app), add_world_build(app), add_world_fly(app),
+                                     add_mesh(app),  add_mesh_bench(app)};
     try {
         app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {

@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <cstdint>
 #include <cstring>
+#include <tuple>
 #include <vector>
 
 #include "voxray/core/box.hpp"
@@ -44,6 +45,16 @@ inline void read_box(const voxel_model& model, const box3i& box, std::uint8_t* o
 }
 
 namespace meshing {
+
+// Origins of the 64^3 chunks that hold a voxel of the model, sorted (z, then y, then x).
+inline std::vector<glm::ivec3> chunk_origins(const voxel_model& model) {
+    std::vector<glm::ivec3> out;
+    model.for_each_chunk([&](glm::ivec3 origin, const voxel_model::chunk&) { out.push_back(chunk_origin(chunk_of(origin))); });
+    auto order = [](glm::ivec3 a, glm::ivec3 b) { return std::tie(a.z, a.y, a.x) < std::tie(b.z, b.y, b.x); };
+    std::sort(out.begin(), out.end(), order);
+    out.erase(std::unique(out.begin(), out.end()), out.end());
+    return out;
+}
 
 // Fills `chunk` with the 64^3 chunk at `origin` (a multiple of 64) of `source` and the
 // solid shell around it. `scratch` holds the shell's slabs between calls.
