@@ -1,0 +1,92 @@
+// Visible faces of one direction by bitwise culling of 64-bit occupancy rows: a +Z face
+// wherever a voxel is solid and the one above is not is `row(y, z) & ~row(y, z + 1)`, 64
+// faces at once. The result is 64 planes (layers along the normal) of 64 rows:
+//
+//   Z faces: layer z, rows y, bits x      planes[layer * 64 + row]
+//   Y faces: layer y, rows z, bits x      planes[layer * 64 + row]
+//   X faces: layer x, rows z, bits y      planes[row * 64 + layer]   (see plane_row)
+//
+//   rows_used[layer]   bit r set where row r of the layer has a face (the mesher walks
+//                      only those rows)
+//
+// The occupancy rows run along x, the normal of X faces, so X faces are culled in columns
+// along y: each z slice of the occupancy (with the x shell) transposed once per chunk
+// (x_columns), which serves both X directions.
+#pragma once
+#include <array>
+#include <cstdint>
+
+#include "voxray/core/ray_hit_layout.h"
+#include "voxray/meshing/bit_transpose.hpp"
+#include "voxray/meshing/chunk.hpp"
+
+namespace voxray::meshing {
+
+// Solid bits along y for x in -1..64 and z in 0..63: columns[z * 66 + x + 1], bit y.
+inline void x_columns(const chunk_voxels& c, std::uint64_t* columns) {
+    const int n = chunk_edge;
+    std::array<std::uint64_t, chunk_edge> slice;
+    for (int z = 0; z < n; ++z) {
+        std::uint64_t* out = columns + z * padded_edge;
+        std::uint64_t lo = 0, hi = 0, any = 0;
+        for (int y = 0; y < n; ++y) {
+            int r = chunk_voxels::row_index(y, z);
+            slice[y] = c.rows[r];
+            any |= slice[y];
+            lo |= std::uint64_t(c.x_lo[r] != 0) << y;
+            hi |= std::uint64_t(c.x_hi[r] != 0) << y;
+        }
+        if (any) transpose64(slice.data());
+        out[0] = lo, out[n + 1] = hi;
+        for (int x = 0; x < n; ++x) out[x + 1] = any ? slice[x] : 0;
+    }
+}
+
+// Row r of layer `layer` in the planes of a face with normal axis `normal`.
+inline std::size_t plane_row(int normal, int layer, int r) {
+    return normal == 0 ? std::size_t(r) * chunk_edge + layer : std::size_t(layer) * chunk_edge + r;
+}
+
+// `columns`: x_columns() of the chunk, read for X faces only.
+inline void face_planes(const chunk_voxels& c, const std::uint64_t* columns, int face, std::uint64_t* planes,
+                        std::uint64_t* rows_used) {
+    const std::uint64_t* rows = c.rows.data();
+    auto row = [&](int y, int z) { return rows[chunk_voxels::row_index(y, z)]; };
+    const int n = chunk_edge;
+    for (int layer = 0; layer < n; ++layer) rows_used[layer] = 0;
+    switch (face) {
+        case VX_FACE_POS_Z:
+        case VX_FACE_NEG_Z: {
+            int dz = face == VX_FACE_POS_Z ? 1 : -1;
+            for (int z = 0; z < n; ++z)
+                for (int y = 0; y < n; ++y) {
+                    std::uint64_t f = planes[z * n + y] = row(y, z) & ~row(y, z + dz);
+                    rows_used[z] |= std::uint64_t(f != 0) << y;
+                }
+            break;
+        }
+        case VX_FACE_POS_Y:
+        case VX_FACE_NEG_Y: {
+            int dy = face == VX_FACE_POS_Y ? 1 : -1;
+            for (int y = 0; y < n; ++y)
+                for (int z = 0; z < n; ++z) {
+                    std::uint64_t f = planes[y * n + z] = row(y, z) & ~row(y + dy, z);
+                    rows_used[y] |= std::uint64_t(f != 0) << z;
+                }
+            break;
+        }
+        default: {
+            int dx = face == VX_FACE_POS_X ? 1 : -1;
+            for (int z = 0; z < n; ++z) {
+                const std::uint64_t* column = columns + z * padded_edge + 1;
+                for (int x = 0; x < n; ++x) {
+                    std::uint64_t f = planes[z * n + x] = column[x] & ~column[x + dx];
+                    rows_used[x] |= std::uint64_t(f != 0) << z;
+                }
+            }
+            break;
+        }
+    }
+}
+
+}  // namespace voxray::meshing
