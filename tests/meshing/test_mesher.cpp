@@ -126,13 +126,19 @@ TEST(mesher, occupancy_paths_agree_with_the_bytes) {
     }
 }
 
-TEST(mesher, bit_transpose) {
+TEST(mesher, bit_transpose_on_every_path) {
     std::mt19937_64 g(9);
-    std::uint64_t a[64], b[64];
-    for (int i = 0; i < 64; ++i) a[i] = b[i] = g();
-    meshing::transpose64(b);
-    for (int i = 0; i < 64; ++i)
-        for (int j = 0; j < 64; ++j) ASSERT_EQ((b[i] >> j) & 1, (a[j] >> i) & 1) << i << ", " << j;
+    for (int path = 0; path < 2; ++path) {
+        if (path == 1 && !meshing::transpose64_has_gfni()) GTEST_SKIP() << "this CPU has no GFNI: the scalar path was tested";
+        std::uint64_t a[64], b[64];
+        for (int i = 0; i < 64; ++i) a[i] = b[i] = g();
+        if (path == 0) meshing::transpose64_scalar(b);
+#if defined(__x86_64__)
+        else meshing::transpose64_gfni(b);
+#endif
+        for (int i = 0; i < 64; ++i)
+            for (int j = 0; j < 64; ++j) ASSERT_EQ((b[i] >> j) & 1, (a[j] >> i) & 1) << "path " << path << ": " << i << ", " << j;
+    }
 }
 
 }  // namespace

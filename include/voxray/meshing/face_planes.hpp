@@ -3,8 +3,10 @@
 // faces at once. The result is 64 planes (layers along the normal) of 64 rows:
 //
 //   Z faces: layer z, rows y, bits x      planes[layer * 64 + row]
-//   Y faces: layer y, rows z, bits x      planes[layer * 64 + row]
-//   X faces: layer x, rows z, bits y      planes[row * 64 + layer]   (see plane_row)
+//   Y faces: layer y, rows z, bits x      planes[row * 64 + layer]   (see plane_row)
+//   X faces: layer x, rows z, bits y      planes[row * 64 + layer]
+//
+// so that every loop below writes consecutive words (the compiler vectorizes them).
 //
 //   rows_used[layer]   bit r set where row r of the layer has a face (the mesher walks
 //                      only those rows)
@@ -44,49 +46,60 @@ inline void x_columns(const chunk_voxels& c, std::uint64_t* columns) {
 
 // Row r of layer `layer` in the planes of a face with normal axis `normal`.
 inline std::size_t plane_row(int normal, int layer, int r) {
-    return normal == 0 ? std::size_t(r) * chunk_edge + layer : std::size_t(layer) * chunk_edge + r;
+    return normal == 2 ? std::size_t(layer) * chunk_edge + r : std::size_t(r) * chunk_edge + layer;
+}
+
+// rows_used[layer] from the planes, 64 words at a time.
+inline void used_rows(int normal, const std::uint64_t* planes, std::uint64_t* rows_used) {
+    const int n = chunk_edge;
+    if (normal == 2) {
+        for (int layer = 0; layer < n; ++layer) {
+            std::uint64_t used = 0;
+            for (int r = 0; r < n; ++r) used |= std::uint64_t(planes[layer * n + r] != 0) << r;
+            rows_used[layer] = used;
+        }
+        return;
+    }
+    for (int layer = 0; layer < n; ++layer) rows_used[layer] = 0;
+    for (int r = 0; r < n; ++r)
+        for (int layer = 0; layer < n; ++layer) rows_used[layer] |= std::uint64_t(planes[r * n + layer] != 0) << r;
 }
 
 // `columns`: x_columns() of the chunk, read for X faces only.
 inline void face_planes(const chunk_voxels& c, const std::uint64_t* columns, int face, std::uint64_t* planes,
                         std::uint64_t* rows_used) {
     const std::uint64_t* rows = c.rows.data();
-    auto row = [&](int y, int z) { return rows[chunk_voxels::row_index(y, z)]; };
     const int n = chunk_edge;
-    for (int layer = 0; layer < n; ++layer) rows_used[layer] = 0;
     switch (face) {
         case VX_FACE_POS_Z:
         case VX_FACE_NEG_Z: {
             int dz = face == VX_FACE_POS_Z ? 1 : -1;
-            for (int z = 0; z < n; ++z)
-                for (int y = 0; y < n; ++y) {
-                    std::uint64_t f = planes[z * n + y] = row(y, z) & ~row(y, z + dz);
-                    rows_used[z] |= std::uint64_t(f != 0) << y;
-                }
+            for (int z = 0; z < n; ++z) {
+                const std::uint64_t* here = rows + chunk_voxels::row_index(0, z);
+                const std::uint64_t* next = rows + chunk_voxels::row_index(0, z + dz);
+                for (int y = 0; y < n; ++y) planes[z * n + y] = here[y] & ~next[y];
+            }
             break;
         }
         case VX_FACE_POS_Y:
         case VX_FACE_NEG_Y: {
             int dy = face == VX_FACE_POS_Y ? 1 : -1;
-            for (int y = 0; y < n; ++y)
-                for (int z = 0; z < n; ++z) {
-                    std::uint64_t f = planes[y * n + z] = row(y, z) & ~row(y + dy, z);
-                    rows_used[y] |= std::uint64_t(f != 0) << z;
-                }
+            for (int z = 0; z < n; ++z) {
+                const std::uint64_t* here = rows + chunk_voxels::row_index(0, z);
+                for (int y = 0; y < n; ++y) planes[z * n + y] = here[y] & ~here[y + dy];
+            }
             break;
         }
         default: {
             int dx = face == VX_FACE_POS_X ? 1 : -1;
             for (int z = 0; z < n; ++z) {
                 const std::uint64_t* column = columns + z * padded_edge + 1;
-                for (int x = 0; x < n; ++x) {
-                    std::uint64_t f = planes[z * n + x] = column[x] & ~column[x + dx];
-                    rows_used[x] |= std::uint64_t(f != 0) << z;
-                }
+                for (int x = 0; x < n; ++x) planes[z * n + x] = column[x] & ~column[x + dx];
             }
             break;
         }
     }
+    used_rows(int(VX_MESH_NORMAL_AXIS(face)), planes, rows_used);
 }
 
 }  // namespace voxray::meshing
