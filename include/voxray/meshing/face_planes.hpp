@@ -21,6 +21,11 @@
 #include "voxray/core/ray_hit_layout.h"
 #include "voxray/meshing/bit_transpose.hpp"
 #include "voxray/meshing/chunk.hpp"
+#include "voxray/meshing/occupancy.hpp"
+
+#if defined(__AVX2__)
+#include <immintrin.h>
+#endif
 
 namespace voxray::meshing {
 
@@ -30,16 +35,13 @@ inline void x_columns(const chunk_voxels& c, std::uint64_t* columns) {
     std::array<std::uint64_t, chunk_edge> slice;
     for (int z = 0; z < n; ++z) {
         std::uint64_t* out = columns + z * padded_edge;
-        std::uint64_t lo = 0, hi = 0, any = 0;
-        for (int y = 0; y < n; ++y) {
-            int r = chunk_voxels::row_index(y, z);
-            slice[y] = c.rows[r];
-            any |= slice[y];
-            lo |= std::uint64_t(c.x_lo[r] != 0) << y;
-            hi |= std::uint64_t(c.x_hi[r] != 0) << y;
-        }
+        std::uint64_t any = 0;
+        const std::uint64_t* rows = c.rows.data() + chunk_voxels::row_index(0, z);
+        for (int y = 0; y < n; ++y) any |= slice[y] = rows[y];
         if (any) transpose64(slice.data());
-        out[0] = lo, out[n + 1] = hi;
+        // The x shell's bytes of this z, y = 0..63, are consecutive: one mask each.
+        occupancy_rows(c.x_lo.data() + chunk_voxels::row_index(0, z), 1, out);
+        occupancy_rows(c.x_hi.data() + chunk_voxels::row_index(0, z), 1, out + n + 1);
         for (int x = 0; x < n; ++x) out[x + 1] = any ? slice[x] : 0;
     }
 }
@@ -49,15 +51,27 @@ inline std::size_t plane_row(int normal, int layer, int r) {
     return normal == 2 ? std::size_t(layer) * chunk_edge + r : std::size_t(r) * chunk_edge + layer;
 }
 
-// rows_used[layer] from the planes, 64 words at a time.
+// Bit i set where words[i] is not 0, i < 64.
+inline std::uint64_t nonzero_words(const std::uint64_t* words) {
+    std::uint64_t mask = 0;
+#if defined(__AVX2__)
+    const __m256i zero = _mm256_setzero_si256();
+    for (int q = 0; q < 16; ++q) {
+        __m256i v = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(words + 4 * q));
+        int zeros = _mm256_movemask_pd(_mm256_castsi256_pd(_mm256_cmpeq_epi64(v, zero)));
+        mask |= std::uint64_t(~zeros & 15) << (4 * q);
+    }
+#else
+    for (int i = 0; i < 64; ++i) mask |= std::uint64_t(words[i] != 0) << i;
+#endif
+    return mask;
+}
+
+// rows_used[layer] from the planes.
 inline void used_rows(int normal, const std::uint64_t* planes, std::uint64_t* rows_used) {
     const int n = chunk_edge;
     if (normal == 2) {
-        for (int layer = 0; layer < n; ++layer) {
-            std::uint64_t used = 0;
-            for (int r = 0; r < n; ++r) used |= std::uint64_t(planes[layer * n + r] != 0) << r;
-            rows_used[layer] = used;
-        }
+        for (int layer = 0; layer < n; ++layer) rows_used[layer] = nonzero_words(planes + layer * n);
         return;
     }
     for (int layer = 0; layer < n; ++layer) rows_used[layer] = 0;
