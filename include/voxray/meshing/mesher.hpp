@@ -40,8 +40,10 @@ struct mesher_options {
 // the bit length of lo XOR hi, the smaller of the two, at most VX_MESH_MAX_LEVEL. Chunk
 // origins are multiples of 64, so chunk-local coordinates give the world's answer.
 inline int quad_level(int u0, int w, int v0, int h) {
-    auto levels = [](unsigned lo, unsigned hi) { return int(std::bit_width(lo ^ hi)); };
-    return std::min({levels(unsigned(u0), unsigned(u0 + w)), levels(unsigned(v0), unsigned(v0 + h)), VX_MESH_MAX_LEVEL});
+    // Selects rather than std::min({...}), which may branch: on noise the levels are random.
+    int along_u = std::bit_width(unsigned(u0) ^ unsigned(u0 + w)), along_v = std::bit_width(unsigned(v0) ^ unsigned(v0 + h));
+    int level = along_u < along_v ? along_u : along_v;
+    return level < VX_MESH_MAX_LEVEL ? level : VX_MESH_MAX_LEVEL;
 }
 
 class mesher {

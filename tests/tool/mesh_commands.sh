@@ -1,0 +1,54 @@
+#!/usr/bin/env bash
+# The chunk mesher through the tool: check --mesh on built-in and real scenes (exit 0 and
+# "0 mismatches" last), mesh-bench rows with the keys the docs and the acceptance checks
+# read, and mesh's PLY and glTF exports holding the quads it reports.
+# Usage: mesh_commands.sh TOOL DATA_DIR WORK_DIR
+set -euo pipefail
+tool=$1 data=$2 work=$3
+mkdir -p "$work"
+failures=0
+fail() { echo "FAIL $*"; failures=$((failures + 1)); }
+
+for scene in builtin:terrain64 builtin:noise50 "$data/vox/minecraft_tree.vox"; do
+    out=$("$tool" check "$scene" --mesh --mesh-views 300 2>/dev/null) || fail "check --mesh $scene: exit $?"
+    last=$(tail -n 1 <<< "$out")
+    [[ $last =~ ": 0 mismatches"$ ]] && echo "ok   $last" || fail "check --mesh $scene: last line '$last'"
+done
+
+"$tool" mesh-bench builtin:sphere30 builtin:checker --seconds 0.02 --json "$work/mesh.jsonl" > /dev/null 2>&1 ||
+    fail "mesh-bench: exit $?"
+python3 - "$work/mesh.jsonl" <<'PY' || fail "mesh-bench rows"
+import json, sys
+lines = [json.loads(l) for l in open(sys.argv[1])]
+assert lines[0]["type"] == "header", lines[0]
+rows = lines[1:]
+assert [r["scene"] for r in rows] == ["builtin:sphere30", "builtin:checker"], rows
+need = ["scene", "chunks", "us_median", "us_p95", "faces", "quads", "bytes_per_quad", "pop_ns_per_quad", "overdraw_max"]
+for r in rows:
+    missing = [k for k in need if k not in r]
+    assert not missing, missing
+    assert r["bytes_per_quad"] == 8 and r["faces"] >= r["quads"] > 0, r
+assert rows[1]["faces"] == rows[1]["quads"] == 64 ** 3 // 2 * 6, rows[1]  # a checkerboard merges nothing
+print("ok   mesh-bench: %d rows with every key" % len(rows))
+PY
+
+out=$("$tool" mesh builtin:sphere30 --ply "$work/sphere.ply" --gltf "$work/sphere.glb" 2>/dev/null) || fail "mesh: exit $?"
+quads=$(awk '$1 == 0 && NF == 5 { print $2 }' <<< "$out")
+python3 - "$work/sphere.ply" "$work/sphere.glb" "$quads" <<'PY' || fail "mesh exports"
+import json, struct, sys
+ply, glb, quads = sys.argv[1], sys.argv[2], int(sys.argv[3])
+header = open(ply, "rb").read(1024).split(b"end_header")[0].decode()
+faces = int(header.split("element face ")[1].split()[0])
+assert faces == quads, (faces, quads)
+data = open(glb, "rb").read()
+magic, version, length = struct.unpack_from("<4sII", data)
+assert magic == b"glTF" and version == 2 and length == len(data), (magic, version, length)
+size, kind = struct.unpack_from("<I4s", data, 12)
+doc = json.loads(data[20:20 + size])
+triangles = doc["accessors"][doc["meshes"][0]["primitives"][0]["indices"]]["count"] // 3
+assert triangles == 2 * quads, (triangles, quads)
+print("ok   exports: %d quads in the PLY, %d triangles in the glTF" % (faces, triangles))
+PY
+
+echo "$failures case(s) failed"
+[[ $failures -eq 0 ]]
