@@ -3,7 +3,8 @@
 // scene gives the spread over runs and a large scene the spread over its chunks. POP's cost
 // is the difference of the medians with POP order on and off, per quad. The occupancy mask
 // (bytes -> bits) and the reading of chunks from the model are timed apart, as the anchors
-// leave them out. Throughput runs whole chunks on 1 and on --threads threads.
+// leave them out. Throughput runs whole chunks on 1 and on --threads threads. The peer,
+// meshoptimizer simplifying to each level's triangle count, runs on up to 8 chunks.
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
@@ -12,6 +13,7 @@
 
 #include "bench_header.hpp"
 #include "cli.hpp"
+#include "mesh_peer.hpp"
 #include "mesh_scene.hpp"
 #include "output.hpp"
 #include "scene.hpp"
@@ -134,6 +136,11 @@ nlohmann::json bench_scene(const std::string& spec, const mesh_bench_options& o)
         overdraw_max_before = std::max(overdraw_max_before, b.overdraw.ratio());
     }
 
+    // The peer on up to 8 of the chunks: meshoptimizer at each POP level's triangle count.
+    std::vector<meshing::chunk_mesh> peer_input(before.begin(), before.begin() + std::ptrdiff_t(std::min<std::size_t>(8, before.size())));
+    std::fprintf(stderr, "meshoptimizer on %zu chunk(s) ...\n", peer_input.size());
+    nlohmann::json peer = meshoptimizer_levels(peer_input);
+
     double median = percentile(pop, 0.5), n = double(chunks.size());
     double one = chunks_per_second(chunks, 1, median * 1e-6, o.seconds);
     double many = chunks_per_second(chunks, o.threads, median * 1e-6, o.seconds);
@@ -169,7 +176,9 @@ nlohmann::json bench_scene(const std::string& spec, const mesh_bench_options& o)
             {"threads", o.threads},
             {"chunks_per_s_1", one},
             {"chunks_per_s", many},
-            {"thread_scaling", many / one}};
+            {"thread_scaling", many / one},
+            {"meshoptimizer_chunks", peer_input.size()},
+            {"meshoptimizer", peer}};
 }
 
 int mesh_bench(const mesh_bench_options& o) {
