@@ -58,6 +58,38 @@ function(voxray_kernel_files out)
     set(${out} ${files} PARENT_SCOPE)
 endfunction()
 
+# The includable sources for users' own shaders and kernels (installed as
+# voxray/shaders/<name>.glsl and .cl): the dialect's head, the shared dialect, then FILES,
+# without voxray's entry points and without #line markers. The shared dialect and FILES each
+# sit inside an include guard, so that one shader or program may include several.
+# voxray_shader_include(<name> <outputs variable> FILES <file>... [HEAD <folder>])
+# HEAD: a folder of the heads (include_head.glsl, include_head.cl) other than the tracing
+# kernels' (backends/vulkan/shaders/, backends/opencl/kernels/).
+function(voxray_shader_include name out)
+    cmake_parse_arguments(arg "" "HEAD" "FILES" ${ARGN})
+    set(shaders ${VOXRAY_GENERATED}/voxray/shaders)
+    set(backends_dir ${PROJECT_SOURCE_DIR}/backends)
+    set(guards ${VOXRAY_GENERATED}/guards)
+    string(TOUPPER ${name} upper)
+    file(CONFIGURE OUTPUT ${guards}/dialect_begin.h CONTENT "#ifndef VOXRAY_SHADER_DIALECT\n#define VOXRAY_SHADER_DIALECT\n")
+    file(CONFIGURE OUTPUT ${guards}/dialect_end.h CONTENT "#endif /* VOXRAY_SHADER_DIALECT */\n")
+    file(CONFIGURE OUTPUT ${guards}/${name}_begin.h CONTENT "#ifndef VOXRAY_SHADER_${upper}\n#define VOXRAY_SHADER_${upper}\n")
+    file(CONFIGURE OUTPUT ${guards}/${name}_end.h CONTENT "#endif /* VOXRAY_SHADER_${upper} */\n")
+    voxray_kernel_files(dialect_files)
+    set(guarded ${guards}/dialect_end.h ${guards}/${name}_begin.h ${arg_FILES} ${guards}/${name}_end.h)
+    set(head_glsl ${backends_dir}/vulkan/shaders/include_head.glsl)
+    set(head_cl ${backends_dir}/opencl/kernels/include_head.cl)
+    if(arg_HEAD)
+        set(head_glsl ${arg_HEAD}/include_head.glsl)
+        set(head_cl ${arg_HEAD}/include_head.cl)
+    endif()
+    voxray_flatten(OUTPUT ${shaders}/${name}.glsl FILES ${head_glsl}
+        ${guards}/dialect_begin.h ${backends_dir}/vulkan/shaders/dialect.glsl ${dialect_files} ${guarded})
+    voxray_flatten(OUTPUT ${shaders}/${name}.cl FILES ${head_cl}
+        ${guards}/dialect_begin.h ${backends_dir}/opencl/kernels/preamble.cl ${dialect_files} ${guarded})
+    set(${out} ${shaders}/${name}.glsl ${shaders}/${name}.cl PARENT_SCOPE)
+endfunction()
+
 function(voxray_add_structure name)
     cmake_parse_arguments(arg "" "" "TYPE;PASSES" ${ARGN})
     if(NOT arg_TYPE)
@@ -98,26 +130,8 @@ function(voxray_add_structure name)
             COMMENT "Checking the ${name} kernel as OpenCL C 1.2 (clang)" VERBATIM)
         list(APPEND outputs ${stamp})
     endif()
-    # The includable sources for users' own shaders and kernels (installed as
-    # voxray/shaders/<name>.glsl and .cl): the same kernel files after the dialect's head,
-    # without voxray's entry points and without #line markers. The shared dialect and the
-    # structure's kernel each sit inside an include guard, so that one shader or program
-    # may include several structures.
-    set(shaders ${VOXRAY_GENERATED}/voxray/shaders)
-    set(backends_dir ${PROJECT_SOURCE_DIR}/backends)
-    set(guards ${VOXRAY_GENERATED}/guards)
-    string(TOUPPER ${name} upper)
-    file(CONFIGURE OUTPUT ${guards}/dialect_begin.h CONTENT "#ifndef VOXRAY_SHADER_DIALECT\n#define VOXRAY_SHADER_DIALECT\n")
-    file(CONFIGURE OUTPUT ${guards}/dialect_end.h CONTENT "#endif /* VOXRAY_SHADER_DIALECT */\n")
-    file(CONFIGURE OUTPUT ${guards}/${name}_begin.h CONTENT "#ifndef VOXRAY_SHADER_${upper}\n#define VOXRAY_SHADER_${upper}\n")
-    file(CONFIGURE OUTPUT ${guards}/${name}_end.h CONTENT "#endif /* VOXRAY_SHADER_${upper} */\n")
-    voxray_kernel_files(dialect_files)
-    set(guarded_kernel ${guards}/dialect_end.h ${guards}/${name}_begin.h ${dir}/kernel.h ${guards}/${name}_end.h)
-    voxray_flatten(OUTPUT ${shaders}/${name}.glsl FILES ${backends_dir}/vulkan/shaders/include_head.glsl
-        ${guards}/dialect_begin.h ${backends_dir}/vulkan/shaders/dialect.glsl ${dialect_files} ${guarded_kernel})
-    voxray_flatten(OUTPUT ${shaders}/${name}.cl FILES ${backends_dir}/opencl/kernels/include_head.cl
-        ${guards}/dialect_begin.h ${cl_dir}/preamble.cl ${dialect_files} ${guarded_kernel})
-    list(APPEND outputs ${shaders}/${name}.glsl ${shaders}/${name}.cl)
+    voxray_shader_include(${name} include_outputs FILES ${dir}/kernel.h)
+    list(APPEND outputs ${include_outputs})
     if(TARGET voxray_opencl)
         voxray_opencl_add_program(${name} ${cl})
     endif()
