@@ -3,7 +3,7 @@
 # backend to PNG, run the benchmark matrix (every structure and baseline: Embree, NanoVDB)
 # into a results file and print its table, the editing figures of brickmap and NAADF, and
 # an open world built chunk by chunk and streamed along a camera path, traced ray by ray
-# and drawn by the GPU-driven passes.
+# and drawn by the GPU-driven passes; then chunk meshes with POP levels of detail.
 set -euo pipefail
 source "$(dirname "${BASH_SOURCE[0]}")/setup.sh"
 install_packages
@@ -41,5 +41,9 @@ echo "== open world: $SCENE tiled 4 x 4 x 1, built chunk by chunk (128^3 chunks)
 "$VOXRAY" world-fly "$OUT/world" --backend vulkan --frames 8 --factor 2.0 --png-dir "$OUT/world_frames"
 echo "== the same path drawn by the GPU-driven passes (chunk and tile selection, visibility buffer, Hi-Z, colour resolve), ms per pass (vulkan)"
 "$VOXRAY" world-fly "$OUT/world" --backend vulkan --frames 8 --factor 2.0 --passes --png-dir "$OUT/world_pass_frames"
-echo "== images, results.jsonl, plots (mrays.png, speed_vs_memory.png, steps.png) and table.md in $OUT"
+echo "== chunk meshes with POP levels of detail: the one-chunk anchors and $SCENE, then face sets and crack tests"
+"$VOXRAY" mesh-bench builtin:sphere30 builtin:terrain64 builtin:checker "$SCENE" --seconds 0.2 --json "$OUT/mesh.jsonl" 2>/dev/null
+"$VOXRAY" mesh builtin:terrain64 --level 2 --gltf "$OUT/terrain64_level2.glb" --ply "$OUT/terrain64_level2.ply" 2>/dev/null | tail -n 8
+"$VOXRAY" check "$SCENE" --mesh --mesh-views 1000 2>/dev/null | tail -n 1 || status=1
+echo "== images, results.jsonl, mesh.jsonl, terrain64_level2.glb, plots (mrays.png, speed_vs_memory.png, steps.png) and table.md in $OUT"
 exit ${status}

@@ -14,6 +14,7 @@
 #include <tuple>
 #include <vector>
 
+#include "voxray/core/box.hpp"
 #include "voxray/meshing/chunk_mesh.hpp"
 #include "voxray/meshing/pop.hpp"
 #include "voxray/meshing/rounded.hpp"
