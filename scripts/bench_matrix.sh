@@ -13,21 +13,10 @@ DATA="${VOXRAY_DATA_DIR:-$ROOT/../shared/data}"
 WIDTH="${WIDTH:-960}" HEIGHT="${HEIGHT:-540}" RUNS="${RUNS:-3}" RESOLUTION="${RESOLUTION:-512}"
 SCENES="${SCENES:-$DATA/vox/flyingapts.vox $DATA/vox/minecraft_nether.vox $DATA/vox/mmmm_scene_church1.vox
     $DATA/vox/minecraft_tree.vox $DATA/mesh/stanford_bunny.ply $DATA/mesh/dabrovic_sponza.obj builtin:terrain}"
-OUT="$ROOT/docs/bench"
-for s in $SCENES; do
-    [[ "$s" == builtin:* || -f "$s" ]] || { echo "scene $s not found (set VOXRAY_DATA_DIR)"; exit 1; }
-done
-
+relative_scenes
 install_packages
-# From the repository's root with relative paths, so that the command the results file
-# records names no directory of this machine (docs must not: tests/docs).
 cd "$ROOT"
-rel() { realpath -m --relative-to="$ROOT" "$1"; }
-scenes=()
-for s in $SCENES; do
-    if [[ "$s" == builtin:* ]]; then scenes+=("$s"); else scenes+=("$(rel "$s")"); fi
-done
-TOOL="$(rel "$BUILD_DIR")/voxray" OUT="$(rel "$OUT")"
+TOOL="$(realpath -m --relative-to="$ROOT" "$BUILD_DIR")/voxray" OUT=docs/bench
 echo "== configure and build the tool ($BUILD_DIR)"
 cmake -S "$ROOT" -B "$BUILD_DIR" -DCMAKE_BUILD_TYPE=Release -DVOXRAY_REQUIRE_ALL_BACKENDS=ON ${CMAKE_EXTRA:-} >/dev/null
 cmake --build "$BUILD_DIR" -j"$(nproc)" --target voxray_tool

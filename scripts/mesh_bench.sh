@@ -10,18 +10,10 @@ source "$(dirname "${BASH_SOURCE[0]}")/setup.sh"
 DATA="${VOXRAY_DATA_DIR:-$ROOT/../shared/data}"
 SCENES="${SCENES:-builtin:sphere30 builtin:terrain64 builtin:checker builtin:noise50 $DATA/vox/minecraft_nether.vox
     $DATA/vox/flyingapts.vox $DATA/vox/mmmm_scene_church1.vox}"
-for s in $SCENES; do
-    [[ "$s" == builtin:* || -f "$s" ]] || { echo "scene $s not found (set VOXRAY_DATA_DIR)"; exit 1; }
-done
+relative_scenes
 install_packages
-# From the repository's root with relative paths: the results file records the command.
 cd "$ROOT"
-rel() { realpath -m --relative-to="$ROOT" "$1"; }
-scenes=()
-for s in $SCENES; do
-    if [[ "$s" == builtin:* ]]; then scenes+=("$s"); else scenes+=("$(rel "$s")"); fi
-done
-TOOL="$(rel "$BUILD_DIR")/voxray" OUT=docs/bench
+TOOL="$(realpath -m --relative-to="$ROOT" "$BUILD_DIR")/voxray" OUT=docs/bench
 echo "== configure and build the tool ($BUILD_DIR)"
 cmake -S "$ROOT" -B "$BUILD_DIR" -DCMAKE_BUILD_TYPE=Release ${CMAKE_EXTRA:-} >/dev/null
 cmake --build "$BUILD_DIR" -j"$(nproc)" --target voxray_tool

@@ -39,3 +39,14 @@ configure_and_build() {
 # PoCL needs a writable cache directory, or it reports zero devices.
 export POCL_CACHE_DIR="${POCL_CACHE_DIR:-$BUILD_DIR/pocl-cache}"
 mkdir -p "$POCL_CACHE_DIR" 2>/dev/null || true
+
+# Checks that every scene of $SCENES (space-separated: files or builtin:NAME) exists and puts
+# them into the array `scenes`, files relative to $ROOT: run from $ROOT, a results file's
+# recorded command then names no directory of this machine (tests/docs checks).
+relative_scenes() {
+    scenes=()
+    for s in $SCENES; do
+        [[ "$s" == builtin:* || -f "$s" ]] || { echo "scene $s not found (set VOXRAY_DATA_DIR)"; return 1; }
+        if [[ "$s" == builtin:* ]]; then scenes+=("$s"); else scenes+=("$(realpath -m --relative-to="$ROOT" "$s")"); fi
+    done
+}
