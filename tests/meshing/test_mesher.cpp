@@ -7,6 +7,7 @@
 
 #include "meshing_models.hpp"
 #include "voxray/check/mesh_faces.hpp"
+#include "voxray/dense_grid/read_box.hpp"
 #include "voxray/meshing/bit_transpose.hpp"
 #include "voxray/meshing/chunk_source.hpp"
 #include "voxray/meshing/mesher.hpp"
@@ -58,6 +59,25 @@ TEST(mesher, blobs_across_chunk_sides_and_negative_coordinates) {
                                std::to_string(origin.y) + ", " + std::to_string(origin.z) + ")";
             for (bool ao : {false, true}) expect_canonical(c, ao, what);
         }
+    }
+}
+
+TEST(mesher, the_dense_grid_hands_out_the_same_chunks_as_its_model) {
+    voxel_model model = test::blob_model(4, box3i{{-90, -70, -66}, {70, 60, 64}});
+    dense_grid grid(model);
+    meshing::mesher mesher;
+    std::vector<std::uint8_t> scratch;
+    auto origins = meshing::chunk_origins(model);
+    origins.push_back({-192, 0, 0});  // beyond the grid: empty
+    for (glm::ivec3 origin : origins) {
+        chunk_voxels from_model, from_grid;
+        meshing::fill_chunk(model, origin, from_model, scratch);
+        meshing::fill_chunk(grid, origin, from_grid, scratch);
+        EXPECT_EQ(from_grid.material, from_model.material) << origin.x << ", " << origin.y << ", " << origin.z;
+        EXPECT_EQ(from_grid.rows, from_model.rows);
+        EXPECT_EQ(from_grid.x_lo, from_model.x_lo);
+        EXPECT_EQ(from_grid.x_hi, from_model.x_hi);
+        EXPECT_EQ(mesher.mesh(from_grid).words, mesher.mesh(from_model).words);
     }
 }
 
