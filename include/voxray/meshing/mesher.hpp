@@ -100,10 +100,34 @@ private:
             glm::ivec3 p = voxel<Normal>(layer, r, 0);
             return material + chunk_voxels::voxel_index(0, p.y, p.z);
         };
+        // Occupancy of layer `front` as the planes' rows (bits along the planes' bits).
+        auto front_row = [&](int front, int r) -> std::uint64_t {
+            if constexpr (Normal == 2) return c.rows[chunk_voxels::row_index(r, front)];
+            else if constexpr (Normal == 1) return c.rows[chunk_voxels::row_index(front, r)];
+            else return columns_[std::size_t(r) * padded_edge + std::size_t(front + 1)];
+        };
+        const int front_step = VX_MESH_POSITIVE(face) ? 1 : -1;
+        // face_ao()'s rule from three rows of the layer in front; faces in the border ring,
+        // whose neighbours may lie in the shell, ask face_ao() itself.
+        auto ao_bits = [&](int layer, int r, int b, glm::ivec3 p) -> std::uint32_t {
+            if (r == 0 || r == n - 1 || b == 0 || b == n - 1) return face_ao(c, p, face);
+            const std::uint64_t rows3[3] = {front_row(layer + front_step, r - 1), front_row(layer + front_step, r),
+                                            front_row(layer + front_step, r + 1)};
+            auto at = [&](int dr, int db) { return int((rows3[dr + 1] >> (b + db)) & 1u); };
+            static constexpr int corner_du[4] = {-1, 1, 1, -1}, corner_dv[4] = {-1, -1, 1, 1};
+            std::uint32_t bits = 0;
+            for (int corner = 0; corner < 4; ++corner) {
+                int du = corner_du[corner], dv = corner_dv[corner];
+                int side_u = bits_along_u ? at(0, du) : at(du, 0), side_v = bits_along_u ? at(dv, 0) : at(0, dv);
+                int diagonal = bits_along_u ? at(dv, du) : at(du, dv);
+                bits |= std::uint32_t(side_u && side_v ? 0 : 3 - (side_u + side_v + diagonal)) << (2 * corner);
+            }
+            return bits;
+        };
         auto key = [&](int layer, int r, int b) -> std::uint32_t {
             glm::ivec3 p = voxel<Normal>(layer, r, b);
             std::uint32_t k = material[chunk_voxels::voxel_index(p.x, p.y, p.z)];
-            if constexpr (AO) k |= face_ao(c, p, face) << 16;
+            if constexpr (AO) k |= ao_bits(layer, r, b, p) << 16;
             return k;
         };
         // The bits of `candidates` (consecutive, from its lowest bit) whose face has key k:
