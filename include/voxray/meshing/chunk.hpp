@@ -64,13 +64,6 @@ struct chunk_voxels {
         for (int z = 0; z < chunk_edge; ++z)
             occupancy_rows(material.data() + voxel_index(0, 0, z), chunk_edge, rows.data() + row_index(0, z));
     }
-
-    bool interior_empty() const {
-        for (int z = 0; z < chunk_edge; ++z)
-            for (int y = 0; y < chunk_edge; ++y)
-                if (rows[row_index(y, z)]) return false;
-        return true;
-    }
 };
 
 // The chunk whose 64^3 box holds world voxel p (floor division, negative coordinates too).

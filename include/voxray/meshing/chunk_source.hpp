@@ -20,7 +20,7 @@
 namespace voxray {
 
 // The voxel model: copies rows of its 16^3 chunks, so a 64^3 box costs 64 hash lookups
-// and 4096 short copies.
+// and 16,384 copies of 16 bytes.
 inline void read_box(const voxel_model& model, const box3i& box, std::uint8_t* out) {
     glm::ivec3 e = box.extent();
     std::fill(out, out + box.volume(), std::uint8_t(0));

@@ -35,7 +35,7 @@ public:
         out.words.resize(at + total * VX_MESH_QUAD_WORDS);
         for (int level = VX_MESH_MAX_LEVEL; level >= 1; --level) {
             std::size_t n = std::size_t(cursor_[level] - begin(level));
-            std::memcpy(out.words.data() + at, begin(level), n * sizeof(std::uint64_t));  // word 0 low: little endian
+            if (n) std::memcpy(out.words.data() + at, begin(level), n * sizeof(std::uint64_t));  // word 0 low: little endian
             at += n * VX_MESH_QUAD_WORDS;
             // Drawn at level of detail i while i < level: this bucket ends the prefix of level - 1.
             out.table[VX_MESH_TABLE_END(face, level - 1)] = std::uint32_t(at / VX_MESH_QUAD_WORDS);
