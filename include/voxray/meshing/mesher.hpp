@@ -114,13 +114,12 @@ private:
             const std::uint64_t rows3[3] = {front_row(layer + front_step, r - 1), front_row(layer + front_step, r),
                                             front_row(layer + front_step, r + 1)};
             auto at = [&](int dr, int db) { return int((rows3[dr + 1] >> (b + db)) & 1u); };
-            static constexpr int corner_du[4] = {-1, 1, 1, -1}, corner_dv[4] = {-1, -1, 1, 1};
             std::uint32_t bits = 0;
             for (int corner = 0; corner < 4; ++corner) {
-                int du = corner_du[corner], dv = corner_dv[corner];
+                int du = ao_corner_du[corner], dv = ao_corner_dv[corner];
                 int side_u = bits_along_u ? at(0, du) : at(du, 0), side_v = bits_along_u ? at(dv, 0) : at(0, dv);
                 int diagonal = bits_along_u ? at(dv, du) : at(du, dv);
-                bits |= std::uint32_t(side_u && side_v ? 0 : 3 - (side_u + side_v + diagonal)) << (2 * corner);
+                bits |= corner_ao(side_u, side_v, diagonal) << (2 * corner);
             }
             return bits;
         };
