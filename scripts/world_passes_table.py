@@ -22,15 +22,11 @@ GROUPS = [
 ]
 
 
-def main():
-    p = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    p.add_argument("passes")
-    p.add_argument("--skip", type=int, default=1)
-    p.add_argument("--out")
-    a = p.parse_args()
+def passes_table(path, skip=1):
+    """The table's markdown, from a world-fly --json file."""
     runs = collections.defaultdict(list)
     traced = collections.defaultdict(list)  # the same path traced ray by ray: trace ms per frame
-    with open(a.passes) as f:
+    with open(path) as f:
         for line in f:
             row = json.loads(line)
             if "passes" in row:
@@ -41,7 +37,7 @@ def main():
              " | frame ms | chunks in view | tile-chunk pairs | ray by ray: trace ms (primary + shadow) |",
              "|---|---|---:|" + "---:|" * (len(GROUPS) + 4)]
     def later(rows):
-        return sorted(rows, key=lambda r: r["frame"])[a.skip:] or rows
+        return sorted(rows, key=lambda r: r["frame"])[skip:] or rows
     for (backend, w, h), rows in runs.items():
         rows = later(rows)
         med = lambda f: statistics.median(f(r) for r in rows)
@@ -52,11 +48,24 @@ def main():
         lines.append(f"| {backend} | {w}×{h} | {len(rows)} | " + " | ".join(cells) +
                      f" | {total:.1f} | {med(lambda r: r['visible_chunks']):.0f} |"
                      f" {med(lambda r: r['pairs'] + r['pairs_again']):.0f} | {trace_ms} |")
-    text = "\n".join(lines) + "\n"
+    return "\n".join(lines) + "\n"
+
+
+def emit(text, out):
+    """Prints a generated table, and writes it to `out` when one is named."""
     print(text, end="")
-    if a.out:
-        with open(a.out, "w") as f:
+    if out:
+        with open(out, "w") as f:
             f.write(text)
+
+
+def main():
+    p = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    p.add_argument("passes")
+    p.add_argument("--skip", type=int, default=1)
+    p.add_argument("--out")
+    a = p.parse_args()
+    emit(passes_table(a.passes, a.skip), a.out)
 
 
 if __name__ == "__main__":

@@ -10,6 +10,8 @@
 //   device_engine     + trace_device: rays and hits in the application's device buffers
 //   pass_engine       + the frame passes on the device (world/frame.hpp): a frame buffer
 //                     to reserve, write, read and size, and run_pass
+//   timed_engine      + kernel_seconds_last_trace: the device time of the last trace's
+//                     kernels alone, without copies of rays and hits (NaN: unknown)
 // An engine without the optional parts still traces: the tracer sends a grown blob
 // whole, has no device-buffer overloads, and runs frame passes on the CPU.
 #pragma once
@@ -63,6 +65,11 @@ template <class B>
 concept backend = requires {
     typename B::options;
     { B::name } -> std::convertible_to<const char*>;
+};
+
+template <class E>
+concept timed_engine = trace_engine<E> && requires(const E& c) {
+    { c.kernel_seconds_last_trace() } -> std::convertible_to<double>;
 };
 
 }  // namespace voxray

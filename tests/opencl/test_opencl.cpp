@@ -5,7 +5,9 @@
 // be cpu_scalar's bit for bit; without, they must still agree with no ties.
 #include <gtest/gtest.h>
 
+#include <chrono>
 #include <cmath>
+#include <cstdlib>
 #include <cstdio>
 #include <cstring>
 #include <limits>
@@ -74,6 +76,51 @@ TEST(opencl, device_is_found_and_program_builds) {
                 "correctly rounded division: %s\n",
                 e.platform_name().c_str(), e.device_name().c_str(), e.program_build_seconds(), e.work_group_size(),
                 e.correctly_rounded_division() ? "yes" : "no");
+}
+
+// The trace kernels' device time (profiling events) is there, and no more than the call.
+TEST(opencl, kernel_time_is_measured_per_trace) {
+    dense_grid grid(test::hollow_box(20));
+    tracer<opencl, dense_grid> gpu(grid);
+    auto rays = random_rays(grid.bounds(), 20000, 23);
+    std::vector<hit> hits(rays.size());
+    auto start = std::chrono::steady_clock::now();
+    gpu.closest_hit(rays, hits);
+    double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    double kernel = gpu.engine().kernel_seconds_last_trace();
+    EXPECT_TRUE(std::isfinite(kernel));
+    EXPECT_GT(kernel, 0.0);
+    EXPECT_LE(kernel, wall);
+}
+
+// A work-group size from the options or VOXRAY_GROUP_SIZE traces the same hits; one that
+// is not a power of two is refused, naming it.
+TEST(opencl, work_group_size_is_an_option) {
+    dense_grid grid(test::random_sparse({{0, 0, 0}, {30, 30, 30}}, 2000, 5));
+    auto rays = test::mixed_rays(grid.bounds(), 10001, 31);
+    tracer<opencl, dense_grid> standard(grid);
+    auto expected = trace_with(standard, rays, VX_MODE_CLOSEST);
+    for (std::size_t size : {1u, 32u, 128u}) {
+        opencl_options options;
+        options.group_size = size;
+        tracer<opencl, dense_grid> sized(grid, options);
+        EXPECT_EQ(sized.engine().work_group_size(), size);
+        auto got = trace_with(sized, rays, VX_MODE_CLOSEST);
+        for (std::size_t i = 0; i < rays.size(); ++i)
+            ASSERT_TRUE(test::identical(expected[i], got[i])) << "group size " << size << ", ray " << i;
+    }
+    opencl_options odd;
+    odd.group_size = 48;
+    try {
+        tracer<opencl, dense_grid> refused(grid, odd);
+        ADD_FAILURE() << "a work-group size of 48 was accepted";
+    } catch (const voxray::error& e) {
+        EXPECT_NE(std::string(e.what()).find("group_size is 48"), std::string::npos) << e.what();
+    }
+    ::setenv("VOXRAY_GROUP_SIZE", "16", 1);
+    tracer<opencl, dense_grid> from_environment(grid);
+    ::unsetenv("VOXRAY_GROUP_SIZE");
+    EXPECT_EQ(from_environment.engine().work_group_size(), 16u);
 }
 
 TEST(opencl, update_replaces_the_structure) {

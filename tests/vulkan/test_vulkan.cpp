@@ -141,6 +141,55 @@ TEST(vulkan, staging_path_matches_direct_path) {
                 direct.engine().uses_staging() ? "staged (no host-visible device memory)" : "mapped");
 }
 
+// The device time of the trace dispatches (timestamps) is there, and no more than the
+// whole call that held them, also across several submissions (it is their sum).
+TEST(vulkan, kernel_time_is_measured_per_trace) {
+    dense_grid grid(test::hollow_box(20));
+    gpu_tracer gpu(grid);
+    for (std::size_t n : {std::size_t(5000), vulkan_detail::max_slice_rays + 1000}) {
+        auto rays = random_rays(grid.bounds(), n, 23);
+        std::vector<hit> hits(n);
+        auto start = std::chrono::steady_clock::now();
+        gpu.closest_hit(rays, hits);
+        double wall = seconds_since(start), kernel = gpu.engine().kernel_seconds_last_trace();
+        EXPECT_TRUE(std::isfinite(kernel)) << n << " rays";
+        EXPECT_GT(kernel, 0.0) << n << " rays";
+        EXPECT_LE(kernel, wall) << n << " rays";
+    }
+}
+
+// A workgroup size from the options (a specialization constant) or VOXRAY_GROUP_SIZE traces
+// the same hits; one that is not a power of two is refused, naming it.
+TEST(vulkan, workgroup_size_is_an_option) {
+    dense_grid grid(test::random_sparse({{-10, 0, 10}, {30, 40, 50}}, 4000, 5));
+    auto rays = test::mixed_rays(grid.bounds(), 10001, 31);
+    gpu_tracer standard(grid);
+    EXPECT_EQ(standard.engine().work_group_size(), vulkan_detail::group_size);
+    std::vector<hit> a(rays.size()), b(rays.size());
+    standard.closest_hit(rays, a);
+    for (std::uint32_t size : {1u, 32u, 256u}) {
+        vulkan_options options;
+        options.group_size = size;
+        gpu_tracer sized(grid, options);
+        EXPECT_EQ(sized.engine().work_group_size(), size);
+        std::fill(b.begin(), b.end(), hit{});
+        sized.closest_hit(rays, b);
+        EXPECT_EQ(std::memcmp(a.data(), b.data(), a.size() * sizeof(hit)), 0) << "group size " << size;
+    }
+    vulkan_options odd;
+    odd.group_size = 48;
+    try {
+        gpu_tracer refused(grid, odd);
+        ADD_FAILURE() << "a workgroup size of 48 was accepted";
+    } catch (const voxray::error& e) {
+        EXPECT_NE(std::string(e.what()).find("group_size is 48"), std::string::npos) << e.what();
+    }
+    ::setenv("VOXRAY_GROUP_SIZE", "128", 1);
+    gpu_tracer from_environment(grid);
+    ::unsetenv("VOXRAY_GROUP_SIZE");
+    EXPECT_EQ(from_environment.engine().work_group_size(), 128u);
+}
+
 TEST(vulkan, tracers_move) {
     dense_grid a(test::hollow_box(12)), b(test::patterned_block({0, 0, 0}, {4, 4, 4}));
     gpu_tracer first(a), second(b);

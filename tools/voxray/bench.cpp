@@ -86,6 +86,13 @@ agreement judge_any_hit(const ray& r, const hit& expected, const hit& got, trace
     return compare_hits(r, closest[0], hit{});
 }
 
+// The median of a non-empty list.
+double median_of(std::vector<double> v) {
+    std::sort(v.begin(), v.end());
+    std::size_t n = v.size();
+    return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+}
+
 // Times one structure x backend on one ray set and validates every timed run.
 nlohmann::json measure(const bench_options& o, slot& structure, traceable& engine, const ray_set& set,
                        const voxel_model& model, traceable& reference) {
@@ -97,7 +104,7 @@ nlohmann::json measure(const bench_options& o, slot& structure, traceable& engin
     for (int w = 0; w < o.warmup; ++w) trace();
     std::string limitation = structure.limitation();
     auto colours = structure.colour_tolerance();  // hits with colours: within it of the palette's
-    std::vector<double> mrays;
+    std::vector<double> mrays, kernel_mrays;  // whole trace; the device's kernels alone (GPU backends)
     std::uint64_t mismatches = 0, ties = 0, limited = 0;
     for (int r = 0; r < o.runs; ++r) {
         std::fill(hits.begin(), hits.end(), hit{});
@@ -105,6 +112,8 @@ nlohmann::json measure(const bench_options& o, slot& structure, traceable& engin
         trace();
         double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
         mrays.push_back(double(set.rays.size()) / s * 1e-6);
+        double kernel_s = engine.kernel_seconds_last_trace();
+        if (std::isfinite(kernel_s) && kernel_s > 0) kernel_mrays.push_back(double(set.rays.size()) / kernel_s * 1e-6);
         for (std::size_t i = 0; i < set.rays.size(); ++i) {
             auto verdict = set.shadow ? judge_any_hit(set.rays[i], set.expected[i], hits[i], reference)
                            : colours ? compare_colour_hits(set.rays[i], set.expected[i], hits[i], model.palette(), *colours)
@@ -119,8 +128,7 @@ nlohmann::json measure(const bench_options& o, slot& structure, traceable& engin
     steps /= double(std::max<std::size_t>(1, hits.size()));
     std::vector<double> sorted = mrays;
     std::sort(sorted.begin(), sorted.end());
-    std::size_t n = sorted.size();
-    double median = n % 2 ? sorted[n / 2] : 0.5 * (sorted[n / 2 - 1] + sorted[n / 2]);
+    double median = median_of(mrays);
     double clock = cpu_clock_hz();
     unsigned threads = engine.cpu_threads();
     // A CPU backend's cost per step of one ray (a device's threads are not this machine's cores).
@@ -132,10 +140,14 @@ nlohmann::json measure(const bench_options& o, slot& structure, traceable& engin
             {"cycles_per_ray_step", cycles},
             {"threads", threads},
             {"simd_width", engine.simd_width()},
+            {"work_group_size", engine.work_group_size()},
             {"mrays_median", median},
             {"mrays_min", sorted.front()},
             {"mrays_max", sorted.back()},
             {"mrays_runs", mrays},
+            // Without the copies of rays and hits between host and device: what the kernel
+            // would trace on rays made and used on the device (null: not measured).
+            {"kernel_mrays_median", kernel_mrays.size() == mrays.size() ? median_of(kernel_mrays) : NAN},
             {"bytes", structure.bytes()},
             {"bytes_per_voxel", voxels ? double(structure.bytes()) / double(voxels) : NAN},
             {"build_seconds", structure.build_seconds()},
@@ -156,6 +168,8 @@ void print_row(const nlohmann::json& r) {
     }
     auto limited = r["limitation_rays"].get<std::uint64_t>();
     std::string label = limited ? "  (+" + std::to_string(limited) + " labelled: " + r["limitation"].get<std::string>() + ")" : "";
+    if (r["kernel_mrays_median"].is_number())  // a device's kernels alone, beside the whole trace
+        label += "  (kernel " + std::to_string(std::lround(r["kernel_mrays_median"].get<double>())) + " Mrays/s)";
     std::printf("%-22s %-14s %-11s %-10s %9.2f %9.2f %9.2f %9.2f %9.2f %10llu%s\n", r["scene"].get<std::string>().c_str(),
                 r["structure"].get<std::string>().c_str(), r["backend"].get<std::string>().c_str(),
                 r["ray_set"].get<std::string>().c_str(), r["mrays_median"].get<double>(), r["mrays_min"].get<double>(),

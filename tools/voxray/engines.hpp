@@ -5,6 +5,7 @@
 // of registered structures (voxray/generated/structures.hpp), of backends and of
 // baselines (backends.hpp); every other file of the tool sees only this header.
 #pragma once
+#include <cmath>
 #include <memory>
 #include <optional>
 #include <span>
@@ -34,6 +35,11 @@ public:
     // CPU threads tracing (0: a device does) and rays per lane group (1: scalar).
     virtual unsigned cpu_threads() const { return 0; }
     virtual unsigned simd_width() const { return 1; }
+    // Device seconds of the last trace's kernels alone, without copies of rays and hits
+    // (GPU backends); NaN where the backend does not measure them.
+    virtual double kernel_seconds_last_trace() const { return NAN; }
+    // Work-items per group of a GPU backend's trace kernels (0: a CPU backend).
+    virtual unsigned work_group_size() const { return 0; }
 };
 
 // One built structure or baseline, shared by every backend that traces it.

@@ -110,6 +110,15 @@ public:
         if constexpr (requires { tracer_.engine().simd_width(); }) return tracer_.engine().simd_width();
         else return 1;
     }
+    unsigned work_group_size() const override {
+        if constexpr (requires { tracer_.engine().work_group_size(); }) return unsigned(tracer_.engine().work_group_size());
+        else return 0;
+    }
+    double kernel_seconds_last_trace() const override {
+        if constexpr (timed_engine<typename tracer<Backend, Structure>::engine_type>)
+            return tracer_.engine().kernel_seconds_last_trace();
+        else return NAN;
+    }
 
 private:
     std::shared_ptr<structure_slot<Structure>> slot_;

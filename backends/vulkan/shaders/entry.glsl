@@ -11,9 +11,11 @@
 // Must match voxray::vulkan_detail::trace_mode_constant_id (voxray/vulkan/pipeline.hpp).
 layout(constant_id = 0) const uint vx_trace_mode = VX_MODE_CLOSEST;
 
-// 64 invocations a group: a multiple of every common subgroup size (8 on lavapipe, 32 on
-// NVIDIA, 64 on AMD). The host side (voxray/vulkan/pipeline.hpp) uses the same number.
-layout(local_size_x = 64, local_size_y = 1, local_size_z = 1) in;
+// 64 invocations a group by default: a multiple of every common subgroup size (8 on
+// lavapipe, 32 on NVIDIA, 64 on AMD). A specialization constant (id 1, must match
+// trace_group_size_id in voxray/vulkan/pipeline.hpp), so vulkan_options::group_size can
+// tune it per device without another module.
+layout(local_size_x = 64, local_size_x_id = 1, local_size_y = 1, local_size_z = 1) in;
 
 // Ray and hit records are 32 bytes of 32-bit scalars (core/ray_hit_layout.h), which is
 // also their std430 layout, so the kernel structs map onto the buffers directly. The host

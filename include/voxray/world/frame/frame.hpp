@@ -201,14 +201,14 @@ private:
         auto t0 = std::chrono::steady_clock::now();
         order_nearest_first(s.visible_chunks);
         s.ms[frame_stats::select_chunks] += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-        timed(s, frame_stats::select_tiles, VX_WF_PASS_SELECT_TILES, s.visible_chunks);
+        timed(s, frame_stats::select_tiles, VX_WF_PASS_SELECT_TILES, std::uint64_t(s.visible_chunks) * header_[VX_WF_HEADER_TILES_Y]);
         s.pairs = read_word(VX_WF_HEADER_PAIR_COUNT);
         if (grow_pairs(s.pairs)) return false;
         timed(s, frame_stats::march, VX_WF_PASS_MARCH, std::uint64_t(s.pairs) * VX_WF_TILE_PIXELS);
         timed(s, frame_stats::build_hiz, VX_WF_PASS_BUILD_HIZ, n_tiles);
         std::array<std::uint32_t, 1> zero{0};
         write_words(VX_WF_HEADER_PAIR_COUNT, zero);
-        timed(s, frame_stats::select_again, VX_WF_PASS_SELECT_TILES_AGAIN, s.visible_chunks);
+        timed(s, frame_stats::select_again, VX_WF_PASS_SELECT_TILES_AGAIN, std::uint64_t(s.visible_chunks) * header_[VX_WF_HEADER_TILES_Y]);
         s.pairs_again = read_word(VX_WF_HEADER_PAIR_COUNT);
         if (grow_pairs(s.pairs_again)) return false;
         timed(s, frame_stats::march_again, VX_WF_PASS_MARCH, std::uint64_t(s.pairs_again) * VX_WF_TILE_PIXELS);

@@ -6,12 +6,13 @@
  *   select chunks    table rows  frustum culling: a chunk's box projected to a tile rect
  *                                (the whole screen when the camera is in front of none of
  *                                its corners' depth), and its near key
- *   select tiles     visible     tile-chunk pairs whose near key is not behind the previous
- *                                frame's Hi-Z
+ *   select tiles     visible x   tile-chunk pairs whose near key is not behind the previous
+ *                    tile rows   frame's Hi-Z
  *   march            pairs x 64  each pixel of the tile through that chunk only; the hit
  *                                enters the visibility buffer by 64-bit atomic max
  *   build Hi-Z       tiles       per tile the farthest key of its pixels
- *   select again     visible     the pairs the previous Hi-Z culled that this frame's passes
+ *   select again     visible x   the pairs the previous Hi-Z culled that this frame's passes
+ *                    tile rows
  *   march            pairs x 64
  *   build Hi-Z       tiles       (next frame's previous)
  *   resolve          pixels      chunk id and voxel -> DFS index -> attribute (colour block)
@@ -155,29 +156,42 @@ VX_FN uint vx_wf_visible_count(VX_FRAME f) {
     return count < capacity ? count : capacity;
 }
 
-/* The tiles of visible chunk k's rect that its near key is not behind: against the previous
- * frame's Hi-Z (again = false), or those that failed that test and pass this frame's. */
-VX_FN void vx_wf_select_tiles(VX_FRAME f, uint k, bool again) {
+/* Whether tile `tile` of visible chunk k (near key `near_key`) is marched in this selection:
+ * against the previous frame's Hi-Z (again = false), or, having failed that test, against
+ * this frame's. */
+VX_FN bool vx_wf_tile_taken(VX_FRAME f, uint near_key, uint tile, uint hiz_previous, uint hiz_current, bool again) {
+    bool passed = near_key >= vx_frame_load(f, hiz_previous + tile);
+    return again ? (!passed && near_key >= vx_frame_load(f, hiz_current + tile)) : passed;
+}
+
+/* Item = (visible chunk k, tile row ty), k-major: the tiles of one row of k's rect that it
+ * is marched in. A row counts its pairs first and claims their slots with one atomic add:
+ * one item per chunk with an atomic per pair serialized millions of pairs on one counter
+ * (50 ms of a 71 ms frame at 3840 x 2160 on an H200, docs/benchmarks.md). */
+VX_FN void vx_wf_select_tiles(VX_FRAME f, uint item, bool again) {
+    uint tiles_x = vx_frame_load(f, VX_WF_HEADER_TILES_X), tiles_y = vx_frame_load(f, VX_WF_HEADER_TILES_Y);
+    uint k = item / tiles_y, ty = item - k * tiles_y;
     if (k >= vx_wf_visible_count(f)) return;
     uint at = vx_frame_load(f, VX_WF_HEADER_VISIBLE_AT) + k * VX_WF_VISIBLE_WORDS;
     uint lo = vx_frame_load(f, at + 1u), hi = vx_frame_load(f, at + 2u), near_key = vx_frame_load(f, at + 3u);
-    uint tiles_x = vx_frame_load(f, VX_WF_HEADER_TILES_X);
-    uint tiles = tiles_x * vx_frame_load(f, VX_WF_HEADER_TILES_Y);
+    if (ty < (lo >> 16) || ty > (hi >> 16)) return;
+    uint tiles = tiles_x * tiles_y;
     uint previous = vx_frame_load(f, VX_WF_HEADER_HIZ_PREVIOUS);
     uint hiz_previous = vx_frame_load(f, VX_WF_HEADER_HIZ_AT) + previous * tiles;
     uint hiz_current = vx_frame_load(f, VX_WF_HEADER_HIZ_AT) + (1u - previous) * tiles;
+    uint row = ty * tiles_x, x0 = lo & 65535u, x1 = hi & 65535u;
+    uint taken = 0u;
+    for (uint tx = x0; tx <= x1; ++tx)
+        if (vx_wf_tile_taken(f, near_key, row + tx, hiz_previous, hiz_current, again)) ++taken;
+    if (taken == 0u) return;
+    uint slot = vx_atomic_add(f, VX_WF_HEADER_PAIR_COUNT, taken);
     uint pairs = vx_frame_load(f, VX_WF_HEADER_PAIRS_AT), capacity = vx_frame_load(f, VX_WF_HEADER_PAIR_CAPACITY);
-    for (uint ty = lo >> 16; ty <= (hi >> 16); ++ty) {
-        for (uint tx = lo & 65535u; tx <= (hi & 65535u); ++tx) {
-            uint tile = ty * tiles_x + tx;
-            bool passed = near_key >= vx_frame_load(f, hiz_previous + tile);
-            bool take = again ? (!passed && near_key >= vx_frame_load(f, hiz_current + tile)) : passed;
-            if (!take) continue;
-            uint slot = vx_atomic_add(f, VX_WF_HEADER_PAIR_COUNT, 1u);
-            if (slot >= capacity) continue;  /* the host sees the count, grows the list, runs again */
-            vx_frame_store(f, pairs + slot * VX_WF_PAIR_WORDS, tile);
-            vx_frame_store(f, pairs + slot * VX_WF_PAIR_WORDS + 1u, k);
-        }
+    for (uint tx = x0; tx <= x1 && slot < capacity; ++tx) {
+        if (!vx_wf_tile_taken(f, near_key, row + tx, hiz_previous, hiz_current, again)) continue;
+        /* slot >= capacity: the host sees the count, grows the list, runs again */
+        vx_frame_store(f, pairs + slot * VX_WF_PAIR_WORDS, row + tx);
+        vx_frame_store(f, pairs + slot * VX_WF_PAIR_WORDS + 1u, k);
+        ++slot;
     }
 }
 

@@ -22,6 +22,10 @@ struct opencl_options {
     std::string platform;  // substring of the platform name; empty: any
     std::string device;    // substring of the device name; empty: any
     bool prefer_gpu = true;  // among the matches, take a GPU before other device types
+    // Work-items per group of the trace kernels (a power of two, within the kernel's limit).
+    // 0: the environment variable VOXRAY_GROUP_SIZE if set, else the largest multiple of
+    // the device's preferred multiple up to 64.
+    std::size_t group_size = 0;
     // Run in the application's context and queue instead of choosing a device (see
     // opencl/interop.hpp); the fields above are then ignored.
     std::optional<opencl_user_context> user_context;

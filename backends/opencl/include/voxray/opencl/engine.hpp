@@ -7,6 +7,7 @@
 #include <CL/cl.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <limits>
 #include <memory>
@@ -15,6 +16,7 @@
 #include <string_view>
 #include <vector>
 
+#include "voxray/core/group_size.hpp"
 #include "voxray/core/hit.hpp"
 #include "voxray/core/ray.hpp"
 #include "voxray/opencl/buffer.hpp"
@@ -58,16 +60,31 @@ public:
             check(clRetainCommandQueue(options.user_context->queue), "clRetainCommandQueue", "the application's queue");
             queue_ = queue_handle(options.user_context->queue);
         } else {
+            // Profiling on: kernel_seconds_last_trace() reads the trace kernels' device time.
             cl_int status = CL_SUCCESS;
-            queue_ = queue_handle(clCreateCommandQueue(ctx_->context(), ctx_->device(), 0, &status));
+            queue_ = queue_handle(
+                clCreateCommandQueue(ctx_->context(), ctx_->device(), CL_QUEUE_PROFILING_ENABLE, &status));
             check(status, "clCreateCommandQueue", "opening device '" + ctx_->device_name() + "'");
         }
+        cl_command_queue_properties queue_properties = 0;
+        check(clGetCommandQueueInfo(queue_.get(), CL_QUEUE_PROPERTIES, sizeof queue_properties, &queue_properties,
+                                    nullptr),
+              "clGetCommandQueueInfo", "reading the queue's properties");
+        profiling_ = (queue_properties & CL_QUEUE_PROFILING_ENABLE) != 0;
         cl_program program = ctx_->program(program_);
         closest_ = create_kernel(program, std::string("vx_closest_") + Kernel::name);
         any_ = create_kernel(program, std::string("vx_any_") + Kernel::name);
         // Both kernels come from one source; the smaller limit serves both.
         local_size_ =
             std::min(group_size_for(closest_.get(), ctx_->device()), group_size_for(any_.get(), ctx_->device()));
+        if (std::size_t asked = requested_group_size(options.group_size)) {
+            std::size_t most = std::min(kernel_group_limit(closest_.get(), ctx_->device()),
+                                        kernel_group_limit(any_.get(), ctx_->device()));
+            if (asked > most)
+                fail("OpenCL: a work-group size of ", asked, " was asked for, but the trace kernels of ", Kernel::name,
+                     " allow at most ", most, " on '", ctx_->device_name(), "' (CL_KERNEL_WORK_GROUP_SIZE)");
+            local_size_ = asked;
+        }
     }
 
     // Copies the blob to the device (blocking: the caller's span may die right after).
@@ -141,6 +158,7 @@ public:
     void trace(std::span<const ray> rays, std::span<hit> hits, std::uint32_t mode) {
         if (hits.size() < rays.size())
             fail("OpenCL: ", rays.size(), " rays but room for only ", hits.size(), " hits");
+        kernel_seconds_ = profiling_ ? 0.0 : NAN;
         if (rays.empty()) return;
         if (!uploaded_) fail("OpenCL: trace before any structure was uploaded");
 
@@ -159,12 +177,18 @@ public:
             check(clEnqueueWriteBuffer(queue_.get(), rays_.get(), CL_TRUE, 0, std::size_t(count) * VX_RAY_BYTES,
                                        rays.data() + first, 0, nullptr, nullptr),
                   "clEnqueueWriteBuffer", "sending rays");
-            enqueue_trace(rays_.get(), hits_.get(), count, mode);
+            event_handle done;
+            enqueue_trace(rays_.get(), hits_.get(), count, mode, profiling_ ? &done : nullptr);
             check(clEnqueueReadBuffer(queue_.get(), hits_.get(), CL_TRUE, 0, std::size_t(count) * VX_HIT_BYTES,
                                       hits.data() + first, 0, nullptr, nullptr),
                   "clEnqueueReadBuffer", "reading hits");
+            if (done) kernel_seconds_ += event_seconds(done.get());  // complete: the read came after it
         }
     }
+
+    // Device seconds the trace kernels of the last trace() took, copies of rays and hits
+    // left out (profiling events); NaN where the queue does not profile (an application's).
+    double kernel_seconds_last_trace() const { return kernel_seconds_; }
 
     // Interop (opencl/interop.hpp): rays and hits in the application's buffers. Enqueues
     // the kernel on the queue and returns; the in-order queue orders it after the commands
@@ -202,7 +226,7 @@ public:
 private:
     // Kernel arguments are captured at enqueue time, so the kernel object is free for the
     // next call at once.
-    void enqueue_trace(cl_mem in, cl_mem out, cl_uint count, std::uint32_t mode) {
+    void enqueue_trace(cl_mem in, cl_mem out, cl_uint count, std::uint32_t mode, event_handle* done = nullptr) {
         cl_mem blob = blob_.get();
         cl_kernel kernel = mode == VX_MODE_ANY ? any_.get() : closest_.get();
         check(clSetKernelArg(kernel, 0, sizeof blob, &blob), "clSetKernelArg", "setting the blob");
@@ -211,8 +235,21 @@ private:
         check(clSetKernelArg(kernel, 3, sizeof count, &count), "clSetKernelArg", "setting the count");
         // The global size is rounded up to whole groups; the kernel skips the extra items.
         std::size_t global = (std::size_t(count) + local_size_ - 1) / local_size_ * local_size_;
-        check(clEnqueueNDRangeKernel(queue_.get(), kernel, 1, nullptr, &global, &local_size_, 0, nullptr, nullptr),
+        cl_event event = nullptr;
+        check(clEnqueueNDRangeKernel(queue_.get(), kernel, 1, nullptr, &global, &local_size_, 0, nullptr,
+                                     done ? &event : nullptr),
               "clEnqueueNDRangeKernel", "tracing " + std::to_string(count) + " rays");
+        if (done) *done = event_handle(event);
+    }
+
+    // Start to end of a completed command on a profiling queue.
+    static double event_seconds(cl_event event) {
+        cl_ulong start = 0, end = 0;
+        check(clGetEventProfilingInfo(event, CL_PROFILING_COMMAND_START, sizeof start, &start, nullptr),
+              "clGetEventProfilingInfo", "reading a trace's start time");
+        check(clGetEventProfilingInfo(event, CL_PROFILING_COMMAND_END, sizeof end, &end, nullptr),
+              "clGetEventProfilingInfo", "reading a trace's end time");
+        return double(end - start) * 1e-9;
     }
 
     std::shared_ptr<device_context> ctx_;
@@ -226,6 +263,8 @@ private:
     pass_runner passes_;
     std::size_t local_size_ = 1;
     bool uploaded_ = false;
+    bool profiling_ = false;     // the queue records command times
+    double kernel_seconds_ = 0;  // of the last trace()
     std::size_t blob_words_ = 0;
     sync::upload_ledger ledger_;
 };

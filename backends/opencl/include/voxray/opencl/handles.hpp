@@ -43,5 +43,6 @@ using queue_handle = cl_handle<cl_command_queue, clReleaseCommandQueue>;
 using program_handle = cl_handle<cl_program, clReleaseProgram>;
 using kernel_handle = cl_handle<cl_kernel, clReleaseKernel>;
 using mem_handle = cl_handle<cl_mem, clReleaseMemObject>;
+using event_handle = cl_handle<cl_event, clReleaseEvent>;
 
 }  // namespace voxray::opencl_detail

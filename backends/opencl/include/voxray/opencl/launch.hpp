@@ -31,10 +31,16 @@ inline std::size_t choose_group_size(std::size_t kernel_max, std::size_t multipl
     return multiple <= limit ? limit / multiple * multiple : limit;
 }
 
-inline std::size_t group_size_for(cl_kernel kernel, cl_device_id device) {
-    std::size_t kernel_max = 0, multiple = 1;
+// The most work-items a group of this kernel may have on this device.
+inline std::size_t kernel_group_limit(cl_kernel kernel, cl_device_id device) {
+    std::size_t kernel_max = 0;
     check(clGetKernelWorkGroupInfo(kernel, device, CL_KERNEL_WORK_GROUP_SIZE, sizeof kernel_max, &kernel_max, nullptr),
           "clGetKernelWorkGroupInfo");
+    return kernel_max;
+}
+
+inline std::size_t group_size_for(cl_kernel kernel, cl_device_id device) {
+    std::size_t kernel_max = kernel_group_limit(kernel, device), multiple = 1;
     check(clGetKernelWorkGroupInfo(kernel, device, CL_KERNEL_PREFERRED_WORK_GROUP_SIZE_MULTIPLE, sizeof multiple,
                                    &multiple, nullptr),
           "clGetKernelWorkGroupInfo");

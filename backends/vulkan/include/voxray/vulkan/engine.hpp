@@ -24,6 +24,7 @@
 
 #include <vulkan/vulkan.h>
 
+#include "voxray/core/group_size.hpp"
 #include "voxray/core/hit.hpp"
 #include "voxray/core/ray.hpp"
 #include "voxray/generated/vulkan_modules.hpp"
@@ -34,6 +35,7 @@
 #include "voxray/vulkan/commit.hpp"
 #include "voxray/vulkan/device.hpp"
 #include "voxray/vulkan/interop.hpp"
+#include "voxray/vulkan/kernel_timer.hpp"
 #include "voxray/vulkan/options.hpp"
 #include "voxray/vulkan/passes.hpp"
 #include "voxray/vulkan/pipeline.hpp"
@@ -57,6 +59,20 @@ constexpr spirv_modules find_modules(std::string_view name) {
     return {name, {}};
 }
 
+// The trace pipelines' workgroup size: the one asked for (options, VOXRAY_GROUP_SIZE),
+// checked against the device's limits, else the default.
+inline std::uint32_t trace_group_size(const context& ctx, std::uint32_t asked) {
+    std::uint32_t size = requested_group_size(asked);
+    if (size == 0) return group_size;
+    const auto& limits = ctx.properties().limits;
+    std::uint32_t most = std::min(limits.maxComputeWorkGroupSize[0], limits.maxComputeWorkGroupInvocations);
+    if (size > most)
+        fail("vulkan: a workgroup size of ", size, " was asked for, but ", ctx.name(), " allows at most ", most,
+             " (maxComputeWorkGroupSize[0] ", limits.maxComputeWorkGroupSize[0], ", maxComputeWorkGroupInvocations ",
+             limits.maxComputeWorkGroupInvocations, ")");
+    return size;
+}
+
 template <class Kernel>
 class engine {
     static constexpr spirv_modules modules_ = find_modules(Kernel::name);
@@ -67,13 +83,15 @@ public:
     explicit engine(vulkan_options options)
         : options_(std::move(options)),
           ctx_(shared_context(options_)),
-          commands_(std::make_unique<command_stream>(*ctx_)) {
+          commands_(std::make_unique<command_stream>(*ctx_)),
+          timer_(std::make_unique<kernel_timer>(*ctx_)) {
+        group_size_ = trace_group_size(*ctx_, options_.group_size);
         auto start = std::chrono::steady_clock::now();
-        closest_ = std::make_unique<compute_pipeline>(*ctx_, modules_.trace, trace_mode{VX_MODE_CLOSEST});
-        any_ = std::make_unique<compute_pipeline>(*ctx_, modules_.trace, trace_mode{VX_MODE_ANY});
+        closest_ = std::make_unique<compute_pipeline>(*ctx_, modules_.trace, trace_mode{VX_MODE_CLOSEST}, group_size_);
+        any_ = std::make_unique<compute_pipeline>(*ctx_, modules_.trace, trace_mode{VX_MODE_ANY}, group_size_);
         pipeline_seconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
         auto groups = std::size_t(ctx_->properties().limits.maxComputeWorkGroupCount[0]);
-        slice_ = std::min({max_slice_rays, groups * group_size, std::size_t(ctx_->max_buffer() / sizeof(ray)),
+        slice_ = std::min({max_slice_rays, groups * group_size_, std::size_t(ctx_->max_buffer() / sizeof(ray)),
                            std::size_t(ctx_->max_allocation() / sizeof(ray))});
     }
 
@@ -84,6 +102,8 @@ public:
         std::swap(options_, o.options_);
         std::swap(ctx_, o.ctx_);
         std::swap(commands_, o.commands_);
+        std::swap(timer_, o.timer_);
+        std::swap(kernel_seconds_, o.kernel_seconds_);
         std::swap(closest_, o.closest_);
         std::swap(any_, o.any_);
         std::swap(committer_, o.committer_);
@@ -94,6 +114,7 @@ public:
         std::swap(rays_staging_, o.rays_staging_);
         std::swap(hits_staging_, o.hits_staging_);
         std::swap(slice_, o.slice_);
+        std::swap(group_size_, o.group_size_);
         std::swap(pipeline_seconds_, o.pipeline_seconds_);
         std::swap(blob_words_, o.blob_words_);
         std::swap(ledger_, o.ledger_);
@@ -203,6 +224,7 @@ public:
     void trace(std::span<const ray> rays, std::span<hit> hits, std::uint32_t mode) {
         if (!blob_.handle()) fail("vulkan: trace called before any structure was uploaded");
         if (hits.size() < rays.size()) fail("vulkan: ", rays.size(), " rays but room for only ", hits.size(), " hits");
+        kernel_seconds_ = 0;
         for (std::size_t first = 0; first < rays.size(); first += slice_) {
             std::size_t n = std::min(slice_, rays.size() - first);
             trace_slice(rays.subspan(first, n), hits.subspan(first, n), mode);
@@ -266,6 +288,11 @@ public:
         return (blob_.handle() && !blob_.mapped()) || (rays_.handle() && !rays_.mapped()) ||
                (hits_.handle() && !hits_.mapped());
     }
+    // Device seconds the dispatches of the last trace() took, copies of rays and hits left
+    // out (GPU timestamps); NaN where the queue has none.
+    double kernel_seconds_last_trace() const { return kernel_seconds_; }
+    // Invocations per workgroup of the trace pipelines (vulkan_options::group_size).
+    std::uint32_t work_group_size() const { return group_size_; }
     // Seconds spent creating the compute pipeline (driver compiles SPIR-V to machine code).
     double pipeline_seconds() const { return pipeline_seconds_; }
 
@@ -311,7 +338,9 @@ private:
             command_stream::barrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT,
                                     VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_READ_BIT);
         }
+        timer_->start(cmd);
         record_dispatches(cmd, rays_.address(), hits_.address(), rays.size(), mode);
+        timer_->stop(cmd);
         // The host may read the hits only after a barrier that makes shader writes
         // visible to it (directly, or after the copy into the staging buffer).
         if (hits_.mapped()) {
@@ -326,19 +355,20 @@ private:
                                     VK_PIPELINE_STAGE_HOST_BIT, VK_ACCESS_HOST_READ_BIT);
         }
         commands_->submit_and_wait();
+        kernel_seconds_ += timer_->seconds();
         std::memcpy(hits.data(), hits_.mapped() ? hits_.mapped() : hits_staging_.mapped(), bytes);
     }
 
     // One dispatch per maxComputeWorkGroupCount groups; the addresses advance between them.
     void record_dispatches(VkCommandBuffer cmd, VkDeviceAddress rays, VkDeviceAddress hits, std::size_t count,
                            std::uint32_t mode) {
-        std::size_t per = std::size_t(ctx_->properties().limits.maxComputeWorkGroupCount[0]) * group_size;
+        std::size_t per = std::size_t(ctx_->properties().limits.maxComputeWorkGroupCount[0]) * group_size_;
         for (std::size_t first = 0; first < count; first += per) {
             std::size_t n = std::min(per, count - first);
             push_constants pc{blob_.address(), rays + first * sizeof(ray), hits + first * sizeof(hit),
                               std::uint32_t(n), 0};
             (mode == VX_MODE_ANY ? any_ : closest_)->bind(cmd, pc);
-            vkCmdDispatch(cmd, std::uint32_t((n + group_size - 1) / group_size), 1, 1);
+            vkCmdDispatch(cmd, std::uint32_t((n + group_size_ - 1) / group_size_), 1, 1);
         }
     }
 
@@ -352,12 +382,15 @@ private:
     // Declaration order is destruction order reversed: the context goes last.
     std::shared_ptr<context> ctx_;  // shared with the other tracers on this device
     std::unique_ptr<command_stream> commands_;
+    std::unique_ptr<kernel_timer> timer_;
     std::unique_ptr<compute_pipeline> closest_, any_;  // one pipeline per trace mode, one module
     committer committer_;
     pass_runner passes_;
     buffer blob_, rays_, hits_, rays_staging_, hits_staging_;
     std::size_t slice_ = max_slice_rays;
+    std::uint32_t group_size_ = group_size;  // invocations per workgroup of the trace pipelines
     double pipeline_seconds_ = 0;
+    double kernel_seconds_ = 0;  // of the last trace()
     std::size_t blob_words_ = 0;
     sync::upload_ledger ledger_;
 };

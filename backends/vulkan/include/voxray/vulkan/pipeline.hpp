@@ -15,7 +15,8 @@
 
 namespace voxray::vulkan_detail {
 
-// Invocations per workgroup: layout(local_size_x = 64) in entry.glsl.
+// Invocations per workgroup of the commit and pass shaders (local_size_x = 64), and the
+// trace shader's default (entry.glsl; a specialization constant there, trace_group_size_id).
 inline constexpr std::uint32_t group_size = 64;
 
 // Addresses are 64-bit; the shader reads each as a uvec2 (low word first), which is the
@@ -34,6 +35,8 @@ static_assert(offsetof(push_constants, count) == 24 && offsetof(push_constants, 
 
 // The trace shaders' specialization constant that holds the mode (entry.glsl, constant_id 0).
 inline constexpr std::uint32_t trace_mode_constant_id = 0;
+// The trace shaders' specialization constant that holds the workgroup size (local_size_x_id 1).
+inline constexpr std::uint32_t trace_group_size_id = 1;
 // A trace pipeline's mode (VX_MODE_CLOSEST or VX_MODE_ANY), fixed when it is created.
 struct trace_mode {
     std::uint32_t value;
@@ -44,8 +47,9 @@ public:
     // `push_bytes`: size of the push constant record its shader declares (the commit and
     // pass shaders have their own).
     compute_pipeline(const context& ctx, std::span<const std::uint32_t> spirv, std::uint32_t push_bytes);
-    // A trace shader's pipeline (push_constants above) for one trace mode.
-    compute_pipeline(const context& ctx, std::span<const std::uint32_t> spirv, trace_mode mode);
+    // A trace shader's pipeline (push_constants above) for one trace mode and workgroup size.
+    compute_pipeline(const context& ctx, std::span<const std::uint32_t> spirv, trace_mode mode,
+                     std::uint32_t invocations);
     ~compute_pipeline() { destroy(); }
     compute_pipeline(const compute_pipeline&) = delete;
     compute_pipeline& operator=(const compute_pipeline&) = delete;

@@ -23,10 +23,12 @@ VOXRAY_HOST_INLINE compute_pipeline::compute_pipeline(const context& ctx, std::s
 }
 
 VOXRAY_HOST_INLINE compute_pipeline::compute_pipeline(const context& ctx, std::span<const std::uint32_t> spirv,
-                                                      trace_mode mode)
+                                                      trace_mode mode, std::uint32_t invocations)
     : device_(ctx.device()), push_bytes_(sizeof(push_constants)) {
-    VkSpecializationMapEntry entry{trace_mode_constant_id, 0, sizeof(std::uint32_t)};
-    VkSpecializationInfo constants{1, &entry, sizeof(std::uint32_t), &mode.value};
+    std::uint32_t values[2] = {mode.value, invocations};
+    VkSpecializationMapEntry entries[2] = {{trace_mode_constant_id, 0, sizeof(std::uint32_t)},
+                                           {trace_group_size_id, sizeof(std::uint32_t), sizeof(std::uint32_t)}};
+    VkSpecializationInfo constants{2, entries, sizeof values, values};
     try {
         create(spirv, &constants);
     } catch (...) {
