@@ -35,6 +35,15 @@ def table(header, rows):
             r["bytes_per_quad"], r["ns_per_face"], r["pop_ns_per_quad"], r["us_median_ao"], r["mask_us"],
             r["overdraw_max"], r["overdraw_max_before_squashed"], r["chunks_per_s_1"], r["chunks_per_s"], r["thread_scaling"],
             peer["ms"], peer["sloppy_ms"]))
+    if all(r.get("remesh") for r in rows):
+        out += ["", "Remeshing after edits (rounds of one random edit on the structure, then the chunks it can "
+                "change read through the structure's `read_box` and meshed again):", "",
+                "| scene | structure | read a chunk µs | remesh µs a chunk | chunks an edit | edit µs |",
+                "|---|---|---:|---:|---:|---:|"]
+        for r in rows:
+            for name, f in r["remesh"].items():
+                out.append("| %s | %s | %.0f | %.0f | %.1f | %.0f |" % (r["scene"], name, f["read_us_median"],
+                           f["remesh_us_per_chunk_median"], f["chunks_per_edit"], f["edit_us_median"]))
     machine = header["machine"]
     out.append("")
     out.append("%s, %d cores, %s, commit %s; `%s`. Per chunk: µs of meshing with POP order (mask apart: `mask µs`, "

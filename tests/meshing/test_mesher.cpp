@@ -7,11 +7,15 @@
 
 #include "meshing_models.hpp"
 #include "voxray/check/mesh_faces.hpp"
+#include "voxray/brickmap/read_box.hpp"
+#include "voxray/check/random_edits.hpp"
 #include "voxray/dense_grid/read_box.hpp"
 #include "voxray/meshing/bit_transpose.hpp"
 #include "voxray/meshing/chunk_source.hpp"
 #include "voxray/meshing/mesher.hpp"
+#include "voxray/naadf/read_box.hpp"
 #include "voxray/scenes/chunk_scenes.hpp"
+#include "voxray/svdag/read_box.hpp"
 
 namespace voxray {
 namespace {
@@ -62,22 +66,61 @@ TEST(mesher, blobs_across_chunk_sides_and_negative_coordinates) {
     }
 }
 
-TEST(mesher, the_dense_grid_hands_out_the_same_chunks_as_its_model) {
-    voxel_model model = test::blob_model(4, box3i{{-90, -70, -66}, {70, 60, 64}});
-    dense_grid grid(model);
+// Every structure with a read_box hands the mesher the chunks of its model: materials,
+// occupancy rows, shell, and so the same quads; also for chunks it only partly covers or
+// not at all, and (the editable ones) after the same edits on both.
+template <class Structure>
+class structure_source : public ::testing::Test {};
+using sources = ::testing::Types<dense_grid, brickmap<>, naadf, svdag>;
+TYPED_TEST_SUITE(structure_source, sources);
+
+template <class Structure>
+void expect_same_chunks(const voxel_model& model, const Structure& structure, std::vector<glm::ivec3> origins,
+                        const std::string& when) {
     meshing::mesher mesher;
     std::vector<std::uint8_t> scratch;
-    auto origins = meshing::chunk_origins(model);
-    origins.push_back({-192, 0, 0});  // beyond the grid: empty
     for (glm::ivec3 origin : origins) {
-        chunk_voxels from_model, from_grid;
+        chunk_voxels from_model, from_structure;
         meshing::fill_chunk(model, origin, from_model, scratch);
-        meshing::fill_chunk(grid, origin, from_grid, scratch);
-        EXPECT_EQ(from_grid.material, from_model.material) << origin.x << ", " << origin.y << ", " << origin.z;
-        EXPECT_EQ(from_grid.rows, from_model.rows);
-        EXPECT_EQ(from_grid.x_lo, from_model.x_lo);
-        EXPECT_EQ(from_grid.x_hi, from_model.x_hi);
-        EXPECT_EQ(mesher.mesh(from_grid).words, mesher.mesh(from_model).words);
+        meshing::fill_chunk(structure, origin, from_structure, scratch);
+        std::string where = when + ", chunk at " + std::to_string(origin.x) + ", " + std::to_string(origin.y) + ", " +
+                            std::to_string(origin.z);
+        EXPECT_EQ(from_structure.material, from_model.material) << where;
+        EXPECT_EQ(from_structure.rows, from_model.rows) << where;
+        EXPECT_EQ(from_structure.x_lo, from_model.x_lo) << where;
+        EXPECT_EQ(from_structure.x_hi, from_model.x_hi) << where;
+        EXPECT_EQ(mesher.mesh(from_structure).words, mesher.mesh(from_model).words) << where;
+    }
+}
+
+TYPED_TEST(structure_source, hands_out_the_chunks_of_its_model) {
+    box3i area{{-90, -70, -66}, {70, 60, 64}};
+    voxel_model model = test::blob_model(4, area);
+    TypeParam structure(model);
+    auto origins = meshing::chunk_origins(model);
+    origins.push_back({-192, 0, 0});  // beyond the structure: empty
+    expect_same_chunks(model, structure, origins, "built");
+    if constexpr (requires { structure.apply(regions::box{}, edit_op::fill, std::uint8_t(1)); }) {
+        for (const region_edit& e : random_edits(area, 40, 7)) {
+            apply_to_model(model, e, area);
+            std::visit([&](const auto& region) { structure.apply(region, e.op, std::uint8_t(e.value)); }, e.region);
+        }
+        for (glm::ivec3 origin : meshing::chunk_origins(model)) origins.push_back(origin);  // and chunks edits reached
+        expect_same_chunks(model, structure, origins, "after 40 edits");
+    }
+}
+
+// A colour-block DAG holds colours, not materials: reading it for a mesh is refused.
+TEST(mesher, a_colour_block_dag_is_no_chunk_source) {
+    voxel_model model = test::blob_model(4, box3i{{0, 0, 0}, {60, 60, 60}});
+    svdag_colours dag(model);
+    chunk_voxels c;
+    std::vector<std::uint8_t> scratch;
+    try {
+        meshing::fill_chunk(dag, {0, 0, 0}, c, scratch);
+        ADD_FAILURE() << "a colour-block DAG was read as materials";
+    } catch (const voxray::error& e) {
+        EXPECT_NE(std::string(e.what()).find("holds colour blocks"), std::string::npos) << e.what();
     }
 }
 

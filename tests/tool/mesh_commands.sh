@@ -29,6 +29,11 @@ for r in rows:
     assert not missing, missing
     assert r["bytes_per_quad"] == 8 and r["faces"] >= r["quads"] > 0, r
 assert rows[1]["faces"] == rows[1]["quads"] == 64 ** 3 // 2 * 6, rows[1]  # a checkerboard merges nothing
+for r in rows:  # remeshing after edits, on both editable structures
+    for structure in ("brickmap", "naadf"):
+        f = r["remesh"][structure]
+        assert f["edits"] == 20 and f["chunks_per_edit"] >= 1 and f["remesh_us_per_chunk_median"] > 0, (structure, f)
+        assert f["read_us_median"] > 0, (structure, f)
 print("ok   mesh-bench: %d rows with every key" % len(rows))
 PY
 

@@ -4,7 +4,8 @@
 // is the difference of the medians with POP order on and off, per quad. The occupancy mask
 // (bytes -> bits) and the reading of chunks from the model are timed apart, as the anchors
 // leave them out. Throughput runs whole chunks on 1 and on --threads threads. The peer,
-// meshoptimizer simplifying to each level's triangle count, runs on up to 8 chunks.
+// meshoptimizer simplifying to each level's triangle count, runs on up to 8 chunks. Then
+// remeshing after --edits random edits on the brickmap and NAADF (mesh_remesh.hpp).
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
@@ -14,9 +15,11 @@
 #include "bench_header.hpp"
 #include "cli.hpp"
 #include "mesh_peer.hpp"
+#include "mesh_remesh.hpp"
 #include "mesh_scene.hpp"
 #include "output.hpp"
 #include "scene.hpp"
+#include "timing.hpp"
 #include "voxray/meshing/occupancy.hpp"
 
 namespace voxray::tool {
@@ -28,18 +31,9 @@ struct mesh_bench_options {
     unsigned threads = 2;
     double seconds = 0.4;  // timing budget per scene and configuration
     std::size_t max_chunks = 256;
+    int edits = 20;  // rounds of remeshing after one random edit, on the brickmap and NAADF
     std::string json;
 };
-
-double seconds_since(std::chrono::steady_clock::time_point start) {
-    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
-
-double percentile(std::vector<double> v, double p) {
-    if (v.empty()) return 0;
-    std::sort(v.begin(), v.end());
-    return v[std::min(v.size() - 1, std::size_t(p * double(v.size() - 1) + 0.5))];
-}
 
 // Up to `most` chunks of the scene, evenly spread; the empty chunk at the origin when the
 // scene has no voxel (the empty-chunk case).
@@ -141,6 +135,9 @@ nlohmann::json bench_scene(const std::string& spec, const mesh_bench_options& o)
     std::fprintf(stderr, "meshoptimizer on %zu chunk(s) ...\n", peer_input.size());
     nlohmann::json peer = meshoptimizer_levels(peer_input);
 
+    std::fprintf(stderr, "remeshing after %d edits on the brickmap and NAADF ...\n", o.edits);
+    nlohmann::json remesh = remesh_figures(model, o.edits);
+
     double median = percentile(pop, 0.5), n = double(chunks.size());
     double one = chunks_per_second(chunks, 1, median * 1e-6, o.seconds);
     double many = chunks_per_second(chunks, o.threads, median * 1e-6, o.seconds);
@@ -178,7 +175,8 @@ nlohmann::json bench_scene(const std::string& spec, const mesh_bench_options& o)
             {"chunks_per_s", many},
             {"thread_scaling", many / one},
             {"meshoptimizer_chunks", peer_input.size()},
-            {"meshoptimizer", peer}};
+            {"meshoptimizer", peer},
+            {"remesh", remesh}};
 }
 
 int mesh_bench(const mesh_bench_options& o) {
@@ -216,6 +214,8 @@ command add_mesh_bench(CLI::App& parent) {
         ->check(finite_range(0.01, 600))->capture_default_str();
     app->add_option("--max-chunks", o->max_chunks, "most chunks of a scene timed (evenly spread)")
         ->check(CLI::Range(std::size_t(1), std::size_t(1) << 20))->capture_default_str();
+    app->add_option("--edits", o->edits, "rounds of one random edit, then remeshing, on the brickmap and NAADF")
+        ->check(CLI::Range(0, 100000))->capture_default_str();
     app->add_option("--json", o->json, "write one JSON line per scene after a header line");
     return {app, [o] { return mesh_bench(*o); }};
 }

@@ -29,6 +29,7 @@
 // takes the exclusive lock and moves the world's min corner by whole pages, so edits
 // name bricks by absolute voxel position and find their top cell under the shared lock.
 #pragma once
+#include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <cmath>
@@ -117,6 +118,35 @@ public:
         std::uint32_t c = codec::load(words_.data() + co);
         if (!(c & VX_BM_CELL_IS_BRICK)) return Payload(VX_BM_CELL_VALUE(c));
         return codec::get(brick_ptr(VX_BM_CELL_VALUE(c)), local_index(q));
+    }
+    // The payload of every voxel of `box` (world coordinates) into `out`, x fastest, then y,
+    // then z; 0 where empty or outside: the mesher's chunk source (brickmap/read_box.hpp).
+    // One top-cell lookup per brick; a solid cell fills its rows at once.
+    void read_box(const box3i& box, Payload* out) const {
+        std::shared_lock lock(locks_.grow);
+        std::fill(out, out + box.volume(), Payload(0));
+        box3i in{glm::max(box.min, world_.min), glm::min(box.max, world_.max)};
+        if (in.empty()) return;
+        constexpr int edge = 1 << codec::bits;
+        glm::ivec3 e = box.extent();
+        glm::uvec3 first = brick_of(in.min), last = brick_of(in.max - 1);
+        for (std::uint32_t bz = first.z; bz <= last.z; ++bz)
+            for (std::uint32_t by = first.y; by <= last.y; ++by)
+                for (std::uint32_t bx = first.x; bx <= last.x; ++bx) {
+                    std::uint32_t co = find_cell({bx, by, bz});
+                    std::uint32_t c = co ? codec::load(words_.data() + co) : VX_BM_CELL_EMPTY;
+                    if (c == VX_BM_CELL_EMPTY) continue;
+                    glm::ivec3 cell = world_.min + glm::ivec3(glm::uvec3(bx, by, bz)) * edge;
+                    glm::ivec3 lo = glm::max(cell, in.min), hi = glm::min(cell + edge, in.max);
+                    const std::uint32_t* brick = c & VX_BM_CELL_IS_BRICK ? brick_ptr(VX_BM_CELL_VALUE(c)) : nullptr;
+                    for (int z = lo.z; z < hi.z; ++z)
+                        for (int y = lo.y; y < hi.y; ++y) {
+                            Payload* row = out + (std::size_t(z - box.min.z) * e.y + std::size_t(y - box.min.y)) * e.x;
+                            for (int x = lo.x; x < hi.x; ++x)
+                                row[x - box.min.x] = brick ? codec::get(brick, local_index(glm::uvec3(glm::ivec3(x, y, z) - world_.min)))
+                                                           : Payload(VX_BM_CELL_VALUE(c));
+                        }
+                }
     }
     // Sets voxel p to v; 0 erases. Outside bounds(), see options::outside.
     void set(glm::ivec3 p, Payload v) {

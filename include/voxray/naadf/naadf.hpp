@@ -139,6 +139,9 @@ public:
         std::shared_lock lock(locks_.m);
         return voxel_count_;
     }
+    // The payload of every voxel of `box` (world coordinates) into `out`, x fastest, then y,
+    // then z; 0 where empty or outside: the mesher's chunk source (naadf/read_box.hpp).
+    void read_box(const box3i& box, payload_type* out) const;
     double build_seconds() const { return build_seconds_; }
     // Figures of the structure as it is now (arrays and groups in use).
     naadf_stats stats() const;
@@ -183,6 +186,7 @@ private:
     std::vector<glm::ivec3> chunks_of(const box3i& b) const;
 
     std::uint32_t chunk_cell(glm::ivec3 grid) const;
+    void read_box_locked(const box3i& box, payload_type* out) const;  // read_box under a lock held
     std::uint64_t page_slot(glm::ivec3 grid) const {
         auto g = glm::uvec3(grid);
         return VX_NA_PAGE_SLOT(std::uint64_t(g.x), std::uint64_t(g.y), std::uint64_t(g.z), std::uint64_t(grid_.pages.x),

@@ -165,26 +165,37 @@ VOXRAY_HOST_INLINE void naadf::apply_line(glm::ivec3 a, glm::ivec3 b, int radius
     });
 }
 
+VOXRAY_HOST_INLINE void naadf::read_box(const box3i& box, payload_type* out) const {
+    std::shared_lock lock(locks_.m);
+    read_box_locked(box, out);
+}
+
+// Chunk by chunk: each decoded once to 16^3 types, then copied a row at a time.
+VOXRAY_HOST_INLINE void naadf::read_box_locked(const box3i& box, payload_type* out) const {
+    std::fill(out, out + box.volume(), payload_type(0));
+    box3i inside = naadf_detail::intersect(box, grid_.bounds);
+    glm::ivec3 e = box.extent();
+    voxel_model::chunk v;
+    for (glm::ivec3 c : chunks_of(inside)) {
+        naadf_detail::decode_chunk(chunk_cell(c - grid_.origin), store_.block_array(0), store_.group(0), v);
+        box3i q = naadf_detail::intersect({c, c + naadf_detail::chunk_edge}, inside);
+        for (int z = q.min.z; z < q.max.z; ++z)
+            for (int y = q.min.y; y < q.max.y; ++y)
+                std::memcpy(out + (std::size_t(z - box.min.z) * e.y + std::size_t(y - box.min.y)) * e.x + std::size_t(q.min.x - box.min.x),
+                            v.voxels.data() + voxel_model::local_index(glm::ivec3(q.min.x, y, z) - c), std::size_t(q.max.x - q.min.x));
+    }
+}
+
 VOXRAY_HOST_INLINE void naadf::copy_region(box3i src, glm::ivec3 offset, edit_op op, bool replace, unsigned threads) {
     std::unique_lock lock(locks_.m);
     src = naadf_detail::intersect(src, grid_.bounds);
     if (src.empty()) return;
     if (replace || op == edit_op::fill)
         make_room({glm::i64vec3(src.min) + glm::i64vec3(offset), glm::i64vec3(src.max) + glm::i64vec3(offset)});
-    // The source first, chunk by chunk (overlapping copies read the old contents).
+    // The source first (overlapping copies read the old contents).
     glm::ivec3 ext = src.extent();
     std::vector<std::uint8_t> values(src.volume());
-    voxel_model::chunk v;
-    for (glm::ivec3 c : chunks_of(src)) {
-        naadf_detail::decode_chunk(chunk_cell(c - grid_.origin), store_.block_array(0), store_.group(0), v);
-        box3i q = naadf_detail::intersect({c, c + naadf_detail::chunk_edge}, src);
-        for (int z = q.min.z; z < q.max.z; ++z)
-            for (int y = q.min.y; y < q.max.y; ++y)
-                for (int x = q.min.x; x < q.max.x; ++x) {
-                    glm::ivec3 s = glm::ivec3(x, y, z) - src.min;
-                    values[(std::size_t(s.z) * ext.y + s.y) * ext.x + s.x] = v.voxels[voxel_model::local_index(glm::ivec3(x, y, z) - c)];
-                }
-    }
+    read_box_locked(src, values.data());
     box3i dst = naadf_detail::intersect({src.min + offset, src.max + offset}, grid_.bounds);
     edit_chunks(chunks_of(dst), threads, [&](std::size_t, glm::ivec3 origin, voxel_model::chunk& c) {
         box3i q = naadf_detail::intersect({origin, origin + naadf_detail::chunk_edge}, dst);
