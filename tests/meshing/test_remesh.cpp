@@ -17,7 +17,9 @@
 namespace voxray {
 namespace {
 
-std::string where(glm::ivec3 p) { return std::to_string(p.x) + ", " + std::to_string(p.y) + ", " + std::to_string(p.z); }
+std::string where(glm::ivec3 p) {
+    return std::to_string(p.x) + ", " + std::to_string(p.y) + ", " + std::to_string(p.z);
+}
 
 // `kept` holds exactly the meshes of every chunk of `structure` (whose voxels are `model`'s).
 template <class Structure>

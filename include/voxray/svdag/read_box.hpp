@@ -38,7 +38,9 @@ public:
     }
 
 private:
-    std::uint64_t leaf_mask(std::uint32_t node) const { return std::uint64_t(w_[node]) | (std::uint64_t(w_[node + 1]) << 32); }
+    std::uint64_t leaf_mask(std::uint32_t node) const {
+        return std::uint64_t(w_[node]) | (std::uint64_t(w_[node + 1]) << 32);
+    }
 
     // Whether the cube [corner, corner + edge) meets the box read.
     bool meets_query(glm::ivec3 corner, int edge) const {

@@ -180,9 +180,12 @@ VOXRAY_HOST_INLINE void naadf::read_box_locked(const box3i& box, payload_type* o
         naadf_detail::decode_chunk(chunk_cell(c - grid_.origin), store_.block_array(0), store_.group(0), v);
         box3i q = naadf_detail::intersect({c, c + naadf_detail::chunk_edge}, inside);
         for (int z = q.min.z; z < q.max.z; ++z)
-            for (int y = q.min.y; y < q.max.y; ++y)
-                std::memcpy(out + (std::size_t(z - box.min.z) * e.y + std::size_t(y - box.min.y)) * e.x + std::size_t(q.min.x - box.min.x),
-                            v.voxels.data() + voxel_model::local_index(glm::ivec3(q.min.x, y, z) - c), std::size_t(q.max.x - q.min.x));
+            for (int y = q.min.y; y < q.max.y; ++y) {
+                std::size_t row = (std::size_t(z - box.min.z) * e.y + std::size_t(y - box.min.y)) * e.x;
+                std::memcpy(out + row + std::size_t(q.min.x - box.min.x),
+                            v.voxels.data() + voxel_model::local_index(glm::ivec3(q.min.x, y, z) - c),
+                            std::size_t(q.max.x - q.min.x));
+            }
     }
 }
 
