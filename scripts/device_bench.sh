@@ -28,8 +28,8 @@ if [[ $SMALL == 1 ]]; then
     SCENES="$DATA/vox/mmmm_scene_church1.vox" SWEEP_SCENE="$DATA/vox/mmmm_scene_church1.vox"
 else
     WIDTH=3840 HEIGHT=2160 RESOLUTION=2048 RUNS=3 FRAMES=8 TILE="4 4 1" GROUP_SIZES="32 128 256"
-    SCENES="$DATA/vox/flyingapts.vox $DATA/vox/minecraft_nether.vox $DATA/vox/mmmm_scene_church1.vox
-        $DATA/mesh/sibenik.obj $DATA/mesh/dabrovic_sponza.obj" SWEEP_SCENE="$DATA/mesh/dabrovic_sponza.obj"
+    source "$ROOT/scripts/device_scenes.sh"
+    SCENES="${DEVICE_SCENES[*]/#/$DATA/}" SWEEP_SCENE="$DATA/mesh/dabrovic_sponza.obj"
 fi
 STRUCTURES="${STRUCTURES:-naadf,brickmap,svdag,world,dense}"
 relative_scenes

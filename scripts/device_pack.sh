@@ -17,9 +17,7 @@ ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 verb="${1:?pack DIR or run DIR RESULTS}"
 DIR="$(realpath -m "${2:?a folder}")"
 DATA="${VOXRAY_DATA_DIR:-$ROOT/../shared/data}"
-# The scenes of scripts/device_bench.sh, relative to the data folder.
-SCENES=(vox/flyingapts.vox vox/minecraft_nether.vox vox/mmmm_scene_church1.vox mesh/sibenik.obj
-        mesh/dabrovic_sponza.obj)
+source "$ROOT/scripts/device_scenes.sh"  # DEVICE_SCENES: the scenes device_bench.sh traces
 # Debian packages whose libraries the NVIDIA Vulkan ICD (libGLX_nvidia) loads.
 GL_PACKAGES=(libglvnd0 libglx0 libegl1 libopengl0 libgl1 libgles2)
 
@@ -42,7 +40,7 @@ here="$(dirname "$0")"  # as called: the results record the tool's path, relativ
 LD_LIBRARY_PATH="$here/lib${LD_LIBRARY_PATH:+:$LD_LIBRARY_PATH}" exec "$here/voxray.bin" "$@"
 EOF
     chmod +x "$stage/bundle/voxray"
-    for s in "${SCENES[@]}"; do
+    for s in "${DEVICE_SCENES[@]}"; do
         mkdir -p "$stage/bundle/data/$(dirname "$s")"
         cp "$DATA/$s" "$stage/bundle/data/$s"
     done

@@ -10,10 +10,10 @@
 #include <algorithm>
 #include <cstdint>
 #include <cstring>
-#include <tuple>
 #include <vector>
 
 #include "voxray/core/box.hpp"
+#include "voxray/core/ivec3_less.hpp"
 #include "voxray/meshing/chunk.hpp"
 #include "voxray/model/voxel_model.hpp"
 
@@ -50,8 +50,7 @@ namespace meshing {
 inline std::vector<glm::ivec3> chunk_origins(const voxel_model& model) {
     std::vector<glm::ivec3> out;
     model.for_each_chunk([&](glm::ivec3 origin, const voxel_model::chunk&) { out.push_back(chunk_origin(chunk_of(origin))); });
-    auto order = [](glm::ivec3 a, glm::ivec3 b) { return std::tie(a.z, a.y, a.x) < std::tie(b.z, b.y, b.x); };
-    std::sort(out.begin(), out.end(), order);
+    std::sort(out.begin(), out.end(), ivec3_less{});
     out.erase(std::unique(out.begin(), out.end()), out.end());
     return out;
 }

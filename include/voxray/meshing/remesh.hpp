@@ -9,10 +9,10 @@
 #include <cstdint>
 #include <map>
 #include <span>
-#include <tuple>
 #include <vector>
 
 #include "voxray/core/box.hpp"
+#include "voxray/core/ivec3_less.hpp"
 #include "voxray/meshing/chunk.hpp"
 #include "voxray/meshing/chunk_mesh.hpp"
 #include "voxray/meshing/chunk_source.hpp"
@@ -30,8 +30,7 @@ inline std::vector<glm::ivec3> chunks_to_remesh(std::span<const box3i> edited) {
             for (int y = lo.y; y <= hi.y; ++y)
                 for (int x = lo.x; x <= hi.x; ++x) out.push_back(chunk_origin({x, y, z}));
     }
-    auto order = [](glm::ivec3 a, glm::ivec3 b) { return std::tie(a.z, a.y, a.x) < std::tie(b.z, b.y, b.x); };
-    std::sort(out.begin(), out.end(), order);
+    std::sort(out.begin(), out.end(), ivec3_less{});
     out.erase(std::unique(out.begin(), out.end()), out.end());
     return out;
 }
@@ -62,10 +61,7 @@ public:
         return {origins.size(), std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count()};
     }
 
-    struct origin_order {
-        bool operator()(glm::ivec3 a, glm::ivec3 b) const { return std::tie(a.z, a.y, a.x) < std::tie(b.z, b.y, b.x); }
-    };
-    const std::map<glm::ivec3, chunk_mesh, origin_order>& by_origin() const { return meshes_; }
+    const std::map<glm::ivec3, chunk_mesh, ivec3_less>& by_origin() const { return meshes_; }
 
 private:
     template <class Source>
@@ -79,7 +75,7 @@ private:
     mesher mesher_;
     chunk_voxels chunk_;
     std::vector<std::uint8_t> scratch_;
-    std::map<glm::ivec3, chunk_mesh, origin_order> meshes_;
+    std::map<glm::ivec3, chunk_mesh, ivec3_less> meshes_;
 };
 
 }  // namespace voxray::meshing

@@ -6,11 +6,11 @@
 #include <algorithm>
 #include <cstdint>
 #include <map>
-#include <tuple>
 #include <vector>
 
 #include <glm/glm.hpp>
 
+#include "voxray/core/ivec3_less.hpp"
 #include "voxray/model/voxel_model.hpp"
 #include "voxray/world/chunk.hpp"
 
@@ -39,10 +39,6 @@ struct chunk_voxels {
 
 // Which cell (C = 2^chunk_bits voxels a side, from `origin`) a position lies in.
 inline glm::ivec3 cell_of(glm::ivec3 p, glm::ivec3 origin, int chunk_bits) { return (p - origin) >> chunk_bits; }
-
-struct ivec3_less {
-    bool operator()(glm::ivec3 a, glm::ivec3 b) const { return std::tie(a.z, a.y, a.x) < std::tie(b.z, b.y, b.x); }
-};
 
 // The model's voxels cut into the cells of a grid whose cell (0,0,0) starts at `origin`,
 // each in its cell's coordinates. `colours`: values are the palette colours (RGBA8), else
