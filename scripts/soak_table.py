@@ -1,7 +1,8 @@
 #!/usr/bin/env python3
 """The soak run's counts (scripts/soak.sh) as a table: rays, mismatches and ties per
 structure x backend pair over every scene and seed, the crashes, and the fuzzer's runs.
-Reads FOLDER/checks.jsonl, crashes.txt and fuzz_vox.stats; writes FOLDER/summary.json
+Reads FOLDER/checks.jsonl, crashes.txt and fuzz.tsv (format, inputs, seconds, 1 if no
+finding); writes FOLDER/summary.json
 and docs/soak.md (its table between the markers, the rest of the page kept)."""
 import json
 import pathlib
@@ -26,17 +27,15 @@ for line in (folder / "checks.jsonl").read_text().splitlines():
             total["edited_rays"] += p["rays"]
 crash_file = folder / "crashes.txt"
 crashes = [l for l in crash_file.read_text().splitlines() if l.strip()] if crash_file.exists() else []
-fuzz = {}
-stats_file = folder / "fuzz_vox.stats"
-if stats_file.exists():
-    for line in stats_file.read_text().splitlines():
-        parts = line.replace(":", " ").split()
-        if line.startswith("stat::number_of_executed_units"):
-            fuzz["executions"] = int(parts[-1])
-        elif line.startswith("fuzz_vox "):
-            fuzz["exit"], fuzz["seconds"] = int(parts[1]), int(parts[2])
+fuzz = []
+fuzz_file = folder / "fuzz.tsv"
+if fuzz_file.exists():
+    for line in fuzz_file.read_text().splitlines():
+        if line.strip():
+            name, inputs, seconds, ok = line.split()
+            fuzz.append({"format": name, "inputs": int(inputs), "seconds": int(seconds), "clean": ok == "1"})
 
-summary = {"scenes": sorted(scenes), "check_runs": runs, "crashes": crashes, "fuzz_vox": fuzz,
+summary = {"scenes": sorted(scenes), "check_runs": runs, "crashes": crashes, "fuzzers": fuzz,
            "pairs": [{"structure": s, "backend": b, **v} for (s, b), v in sorted(pairs.items())]}
 (folder / "summary.json").write_text(json.dumps(summary, indent=1) + "\n")
 
@@ -44,9 +43,10 @@ rows = ["| structure | backend | rays | of them after edits | mismatches | ties 
 for (s, b), v in sorted(pairs.items()):
     rows.append(f"| {s} | {b} | {v['rays']:,} | {v['edited_rays']:,} | {v['mismatches']} | {v['ties']:,} |")
 rows.append("")
-rows.append(f"{len(scenes)} scenes, {runs} check runs, {len(crashes)} crashes"
-            + (f"; the .vox fuzzer: {fuzz.get('executions', 0):,} inputs in {fuzz.get('seconds', 0)} s, exit {fuzz.get('exit')}"
-               if fuzz else "") + ".")
+rows.append(f"{len(scenes)} scenes, {runs} check runs, {len(crashes)} crashes.")
+if fuzz:
+    rows += ["", "| fuzzer | inputs | seconds | finding |", "|---|---:|---:|---|"]
+    rows += [f"| {f['format']} | {f['inputs']:,} | {f['seconds']} | {'none' if f['clean'] else 'YES'} |" for f in fuzz]
 table = "\n".join(rows)
 
 page = pathlib.Path(__file__).resolve().parent.parent / "docs" / "soak.md"
@@ -56,4 +56,4 @@ head, rest = text.split(begin, 1)
 _, tail = rest.split(end, 1)
 page.write_text(f"{head}{begin}\n{table}\n{end}{tail}")
 print(table)
-sys.exit(1 if crashes or any(v["mismatches"] for v in pairs.values()) or fuzz.get("exit", 0) != 0 else 0)
+sys.exit(1 if crashes or any(v["mismatches"] for v in pairs.values()) or not all(f["clean"] for f in fuzz) else 0)

@@ -20,6 +20,10 @@
 #include "voxray/io/obj_reader.hpp"
 #include "voxray/io/ply_reader.hpp"
 #include "voxray/io/vox_reader.hpp"
+#include "voxray/world/build/model_source.hpp"
+#include "voxray/world/build/world_build.hpp"
+#include "voxray/world/chunk_file.hpp"
+#include "voxray/world/manifest.hpp"
 
 namespace voxray::test::malformed {
 
@@ -36,6 +40,15 @@ inline bytes read_file(const std::filesystem::path& p) {
     std::ifstream in(p, std::ios::binary);
     return bytes(std::istreambuf_iterator<char>(in), {});
 }
+
+// A scratch file or folder, removed when this goes out of scope.
+struct removed_at_exit {
+    std::filesystem::path p;
+    ~removed_at_exit() {
+        std::error_code ignored;
+        std::filesystem::remove_all(p, ignored);
+    }
+};
 
 // Small models to save in a structure's file format: scattered colours, a full block,
 // negative coordinates.
@@ -65,10 +78,7 @@ input_format saved_structure_format(std::string name, Save save, Load load, std:
     f.load = [name, load](const bytes& b) {
         auto p = scratch_path("mutant." + name);
         write_file(p, b);
-        struct remove_at_exit {
-            std::filesystem::path p;
-            ~remove_at_exit() { std::filesystem::remove(p); }
-        } cleanup{p};
+        removed_at_exit cleanup{p};
         load(p);
     };
     f.boundaries = [header_bytes](const bytes& b) {
@@ -117,6 +127,82 @@ inline input_format vxna_format() {
         sum.words(w.data(), words);
         sum.bytes(b.data() + naadf_file_header_bytes + 4 * words, b.size() - naadf_file_header_bytes - 4 * words);
         std::memcpy(b.data() + 24, &sum.h, 8);
+    };
+    return f;
+}
+
+// A small world built once into a scratch folder (removed at exit): its manifest and
+// chunk files are the world formats' samples.
+inline const std::filesystem::path& sample_world() {
+    struct built {
+        std::filesystem::path dir = scratch_path("world");
+        built() {
+            world_build_options o;
+            o.chunk_bits = 4, o.threads = 1, o.replace = true;
+            build_world(model_source(sample_models()[0]), dir, o);
+        }
+        ~built() {
+            std::error_code ignored;
+            std::filesystem::remove_all(dir, ignored);
+        }
+    };
+    static built world;
+    return world.dir;
+}
+
+
+// One chunk file (.vxck) read back through its path, as the streamed world reads them.
+inline input_format vxck_format() {
+    input_format f;
+    f.name = "vxck";
+    auto manifest = read_manifest(sample_world());
+    for (auto& c : manifest.chunks)
+        if (f.samples.size() < 3) f.samples.push_back(read_file(chunk_file_path(sample_world(), c.key)));
+    f.load = [](const bytes& b) {
+        auto p = scratch_path("mutant.vxck");
+        write_file(p, b);
+        removed_at_exit cleanup{p};
+        (void)read_chunk_file(p);
+    };
+    f.boundaries = [](const bytes& b) {
+        std::vector<std::size_t> out;
+        for (std::size_t at = 0; at < chunk_file_header_bytes + 4 * VX_SV_HEADER_WORDS && at < b.size(); at += 4)
+            out.push_back(at);
+        return out;
+    };
+    f.reseal = [](bytes& b) {  // the header's bytes before the sum, then the DAG word by word
+        if (b.size() < chunk_file_header_bytes || (b.size() - chunk_file_header_bytes) % 4) return;
+        blob_words dag((b.size() - chunk_file_header_bytes) / 4);
+        if (!dag.empty()) std::memcpy(dag.data(), b.data() + chunk_file_header_bytes, dag.size() * 4);
+        std::uint64_t sum = chunk_file_detail::checksum(b.data(), dag);
+        std::memcpy(b.data() + chunk_file_offset::checksum, &sum, 8);
+    };
+    return f;
+}
+
+// The world's manifest (world.vxwm), read from a scratch folder.
+inline input_format vxwm_format() {
+    input_format f;
+    f.name = "vxwm";
+    f.samples.push_back(read_file(manifest_path(sample_world())));
+    f.load = [](const bytes& b) {
+        auto dir = scratch_path("mutant_world");
+        std::filesystem::create_directories(dir);
+        write_file(manifest_path(dir), b);
+        removed_at_exit cleanup{dir};
+        (void)read_manifest(dir);
+    };
+    f.boundaries = [](const bytes& b) {
+        std::vector<std::size_t> out;
+        for (std::size_t at = 0; at < b.size() && at < manifest_header_bytes + 4 * manifest_chunk_bytes; at += 4) out.push_back(at);
+        return out;
+    };
+    f.reseal = [](bytes& b) {  // bytes [0, 88), then the chunk table
+        if (b.size() < manifest_header_bytes) return;
+        fnv64 sum;
+        sum.bytes(b.data(), 88);
+        sum.bytes(b.data() + manifest_header_bytes, b.size() - manifest_header_bytes);
+        std::memcpy(b.data() + 88, &sum.h, 8);
     };
     return f;
 }
@@ -237,7 +323,7 @@ inline input_format ply_format() {
 
 // Every format the malformed-input test runs. Add a format here (one line).
 inline std::vector<input_format> all_formats() {
-    return {vox_format(), obj_format(), ply_format(), vxbm_format(), vxna_format()};
+    return {vox_format(), obj_format(), ply_format(), vxbm_format(), vxna_format(), vxck_format(), vxwm_format()};
 }
 
 }  // namespace voxray::test::malformed
