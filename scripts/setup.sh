@@ -7,7 +7,8 @@ PACKAGES=(cmake make g++ libglm-dev libembree-dev libtbb-dev opencl-headers open
           ocl-icd-opencl-dev pocl-opencl-icd clinfo libvulkan-dev mesa-vulkan-drivers vulkan-tools
           glslang-tools spirv-tools libgtest-dev libbenchmark-dev clang-14 libclang-rt-14-dev
           libnanovdb-dev libcli11-dev nlohmann-json3-dev libstb-dev python3-matplotlib libtinygltf-dev
-          libmeshoptimizer-dev)
+          libmeshoptimizer-dev libopenmpi-dev openmpi-bin openssh-client)
+# openssh-client: Open MPI's mpirun wants an rsh agent even when every rank is local.
 
 ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 BUILD_DIR="${BUILD_DIR:-$ROOT/build}"

@@ -38,12 +38,13 @@ scratch=$(mktemp -d "${TMPDIR:-/tmp}/voxray-fuzz.XXXXXX")
 trap 'rm -rf "$scratch"' EXIT
 
 # -max_len keeps mutations cheap (bigger seeds are cut, which still exercises the
-# truncation paths); -timeout turns a hang into a failure.
+# truncation paths); -timeout turns a hang into a failure. -error_exitcode=1: libFuzzer's
+# own default, 77, is ctest's skip code, so a finding would have read as a skipped test.
 fuzz() {  # fuzz CORPUS [libFuzzer options...]
     local corpus=$1
     shift
     "$binary" "$corpus" "$@" -max_total_time="$seconds" -max_len=65536 -timeout=20 -rss_limit_mb=4096 \
-        -print_final_stats=1 -artifact_prefix="$work_dir/artifacts/"
+        -print_final_stats=1 -error_exitcode=1 -artifact_prefix="$work_dir/artifacts/"
 }
 
 if [[ "$target" == fuzz_vox ]]; then

@@ -31,7 +31,7 @@ if(NOT backends)
 endif()
 
 # Every public header of the core and of the backends linked here (not the Embree and
-# NanoVDB baselines, not the generated tables that the backends include themselves).
+# NanoVDB baselines nor the MPI component, not the generated tables that the backends include themselves).
 if(VOXRAY_SOURCE_DIR)
     file(GLOB roots ${VOXRAY_SOURCE_DIR}/include ${VOXRAY_SOURCE_DIR}/backends/*/include)
 else()
@@ -42,7 +42,7 @@ foreach(root ${roots})
     file(GLOB_RECURSE headers RELATIVE ${root} ${root}/voxray/*.hpp)
     foreach(h ${headers})
         string(REGEX MATCH "^voxray/(cpu|opencl|vulkan)" backend "${h}")
-        if(h MATCHES "^voxray/(generated|embree|nanovdb)/" OR (backend AND NOT TARGET voxray::${CMAKE_MATCH_1}))
+        if(h MATCHES "^voxray/(generated|embree|nanovdb|mpi)/" OR (backend AND NOT TARGET voxray::${CMAKE_MATCH_1}))
             continue()
         endif()
         # The world's frame passes run on the CPU lanes where no device runs them: voxray::cpu.

@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "random_models.hpp"
+#include "error_of.hpp"
 #include "temp_dir.hpp"
 #include "voxray/core/checksum.hpp"
 #include "voxray/svdag/builder.hpp"
@@ -53,16 +54,6 @@ void reseal(bytes& b) {
     std::memcpy(b.data() + 72, &sum.h, 8);
 }
 
-// The message of the voxray::error that f throws, or a failure.
-std::string error_of(const std::function<void()>& f) {
-    try {
-        f();
-    } catch (const error& e) {
-        return e.what();
-    }
-    ADD_FAILURE() << "no voxray::error thrown";
-    return {};
-}
 
 // The message is evaluated once (it may come from error_of).
 #define EXPECT_HAS(message, part)                                                                   \

@@ -16,6 +16,7 @@
 #include <map>
 #include <string>
 
+#include "error_of.hpp"
 #include "temp_dir.hpp"
 #include "voxray/world/build/model_source.hpp"
 #include "voxray/world/build/world_build.hpp"
@@ -35,21 +36,6 @@ residency_options every_lod0_chunk() {
     return ro;
 }
 
-// The message of the voxray::error that f throws ("" and a test failure when it throws
-// nothing or something else).
-template <class F>
-std::string error_of(F&& f) {
-    try {
-        f();
-    } catch (const error& e) {
-        return e.what();
-    } catch (const std::exception& e) {
-        ADD_FAILURE() << "not a voxray::error: " << e.what();
-        return "";
-    }
-    ADD_FAILURE() << "no error";
-    return "";
-}
 
 bool has(const std::string& s, const std::string& part) { return s.find(part) != std::string::npos; }
 

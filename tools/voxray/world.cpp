@@ -27,7 +27,9 @@
 #include "voxray/world/build/mesh_source.hpp"
 #include "voxray/world/build/model_source.hpp"
 #include "voxray/world/stream/streamed_world.hpp"
+#include "voxray/world/build/sharded_build.hpp"
 #include "voxray/world/build/world_build.hpp"
+#include "world_mpi.hpp"
 
 namespace voxray::tool {
 
@@ -43,13 +45,25 @@ double peak_rss_mib() {
 
 struct build_options {
     scene_options scene;
-    std::string out, json_out;
+    std::string out, json_out, chunk_times;
     int chunk_bits = 8, density = 2;
     bool colours = false, force = false;
     float colour_error = 0.05f;
     std::vector<int> tile{1, 1, 1};
     unsigned threads = 0;
+    std::string shard, mpi_schedule = "dynamic";  // shard: "K/N" or empty
+    bool finish = false;
 };
+
+// --shard K/N: share K (0-based) of N.
+world_shard parse_shard(const std::string& text) {
+    unsigned k = 0, n = 0;
+    char slash = 0, extra = 0;
+    if (std::sscanf(text.c_str(), "%u %c %u %c", &k, &slash, &n, &extra) != 3 || slash != '/' || n == 0 || k >= n ||
+        text.find('-') != std::string::npos)
+        fail("--shard '", text, "': expected K/N with N >= 1 and K in [0, N) (K counts from 0, as Slurm array ids do)");
+    return {k, n};
+}
 
 // Progress on stderr, at most twice a second and at the end of each LOD: chunks done,
 // their rate and the LOD's time to go. (The build calls it one call at a time.)
@@ -98,20 +112,59 @@ int world_build(const build_options& o) {
                               json{{"scene", scene_label(spec)}, {"up_axis", up_axis}, {"palette", colours}}.dump() + "\n",
                               "world-build");
     };
+    // One process, a shard, the finish of shards, or one of the ranks mpirun started.
+    std::optional<world_shard> shard;
+    if (!o.shard.empty()) shard = parse_shard(o.shard);
+    if (shard && o.finish) fail("--shard and --finish: run the shards first, then --finish alone");
+    auto ranks = mpi_ranks::if_launched();
+    if (ranks && (shard || o.finish)) fail("--shard and --finish are for separate jobs, not for ranks mpirun starts");
+    bool quiet = ranks && ranks->rank() != 0;  // rank 0 speaks for all
+    if (quiet) wo.progress = nullptr;
+    std::optional<output_file> times;  // --chunk-times: a line a chunk job (each rank its own file)
+    if (!o.chunk_times.empty()) {
+        times.emplace(ranks ? o.chunk_times + ".rank" + std::to_string(ranks->rank()) : o.chunk_times, "--chunk-times");
+        times->stream() << "lod\tx\ty\tz\tseconds\tvoxels\n";
+        wo.progress = [&times, print = wo.progress](const world_build_progress& p) {
+            times->stream() << p.chunk.lod << '\t' << p.chunk.cell.x << '\t' << p.chunk.cell.y << '\t' << p.chunk.cell.z << '\t'
+                            << p.chunk_seconds << '\t' << p.chunk_voxels << '\n';
+            if (print) print(p);
+        };
+    }
+    auto build = [&](const auto& source) {
+        if (ranks) return ranks->build(source, o.out, wo, o.mpi_schedule);
+        if (shard) return build_world_shard(source, o.out, wo, *shard);
+        if (o.finish) return finish_world_build(source, o.out, wo);
+        return build_world(source, o.out, wo);
+    };
     auto start = std::chrono::steady_clock::now();
-    if (mesh) {
-        io::triangle_mesh m = io::load_mesh(spec);
-        std::fprintf(stderr, "building a world from %s at %d, chunk by chunk ...\n", spec.c_str(), o.scene.resolution);
-        mesh_source source(m, o.scene.resolution, o.scene.max_cell_tests);
-        pal = source.colours();
-        up_axis = 1;
-        report = build_world(source, o.out, wo);
-    } else {
-        voxel_model model = load_scene(spec, o.scene);
-        pal = model.palette();
-        up_axis = model.up_axis;
-        std::fprintf(stderr, "building a world from %s tiled %d x %d x %d ...\n", spec.c_str(), o.tile[0], o.tile[1], o.tile[2]);
-        report = build_world(model_source(model, {o.tile[0], o.tile[1], o.tile[2]}), o.out, wo);
+    try {
+        if (mesh) {
+            io::triangle_mesh m = io::load_mesh(spec);
+            if (!quiet) std::fprintf(stderr, "building a world from %s at %d, chunk by chunk ...\n", spec.c_str(), o.scene.resolution);
+            mesh_source source(m, o.scene.resolution, o.scene.max_cell_tests);
+            pal = source.colours();
+            up_axis = 1;
+            report = build(source);
+        } else {
+            voxel_model model = load_scene(spec, o.scene);
+            pal = model.palette();
+            up_axis = model.up_axis;
+            if (!quiet)
+                std::fprintf(stderr, "building a world from %s tiled %d x %d x %d ...\n", spec.c_str(), o.tile[0], o.tile[1], o.tile[2]);
+            report = build(model_source(model, {o.tile[0], o.tile[1], o.tile[2]}));
+        }
+    } catch (const error&) {
+        if (quiet) return 1;  // every rank has the message; rank 0 prints it
+        throw;
+    }
+    if (times) times->finish();
+    if (quiet) return 0;
+    if (shard) {
+        std::uint64_t chunks = 0;
+        for (auto& l : report.lods) chunks += l.chunks;
+        std::printf("shard %u of %u: %llu chunks of LODs up to the split in %.1f s (%.1f chunks/s); then --finish\n",
+                    shard->index, shard->count, (unsigned long long)chunks, report.seconds, report.chunks_per_second());
+        return 0;
     }
     double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     world_manifest m = read_manifest(o.out);
@@ -128,16 +181,23 @@ int world_build(const build_options& o) {
         lods.push_back({{"lod", n}, {"chunks", l.chunks}, {"voxels", l.voxels}, {"disk_bytes", l.disk_bytes}, {"seconds", l.seconds}, {"resumed", l.resumed}});
     }
     double rss = peak_rss_mib();
-    std::printf("%.1f s in all (%.1f s building), %.1f M voxels/s, %.1f chunks/s, peak memory %.0f MiB, %.1f MiB on disk\n",
-                seconds, report.seconds, report.voxels_per_second() / 1e6, report.chunks_per_second(), rss,
-                double(m.disk_bytes()) / 1048576.0);
+    int processes = ranks ? ranks->size() : 1;
+    if (o.finish)  // the shards built (and timed) the chunks up to the split: they count as resumed here
+        std::printf("%.1f s in all for the finish, peak memory %.0f MiB, %.1f MiB on disk\n", seconds, rss,
+                    double(m.disk_bytes()) / 1048576.0);
+    else
+        std::printf("%.1f s in all (%.1f s building), %.1f M voxels/s, %.1f chunks/s on %d process%s, peak memory %.0f MiB "
+                    "(this process), %.1f MiB on disk\n",
+                    seconds, report.seconds, report.voxels_per_second() / 1e6, report.chunks_per_second(), processes,
+                    processes == 1 ? "" : "es", rss, double(m.disk_bytes()) / 1048576.0);
     if (!o.json_out.empty()) {
         output_file out(o.json_out, "--json", std::ios::app);
         out.stream() << json{{"scene", scene_label(spec)}, {"resolution", mesh ? o.scene.resolution : 0}, {"tile", o.tile},
                     {"extent", {e.x, e.y, e.z}}, {"chunk_bits", m.grid.chunk_bits}, {"top_lod", m.grid.top_lod},
                     {"colours", o.colours}, {"seconds", seconds}, {"build_seconds", report.seconds},
                     {"voxels_per_second", report.voxels_per_second()}, {"chunks_per_second", report.chunks_per_second()},
-                    {"peak_rss_mib", rss}, {"disk_bytes", m.disk_bytes()}, {"lods", lods}}
+                    {"peak_rss_mib", rss}, {"disk_bytes", m.disk_bytes()}, {"lods", lods}, {"processes", processes},
+                    {"mpi_schedule", ranks ? o.mpi_schedule : ""}, {"finish", o.finish}}
                    .dump()
             << "\n";
         out.finish();
@@ -316,7 +376,13 @@ command add_world_build(CLI::App& parent) {
     app->add_option("--tile", o->tile, "a .vox or built-in scene repeated X Y Z times")->expected(3)->check(CLI::Range(1, 4096));
     app->add_option("--threads", o->threads, "build threads (0: all)")->capture_default_str();
     app->add_option("--json", o->json_out, "append the build report as a JSON line");
+    app->add_option("--chunk-times", o->chunk_times, "write each chunk job's LOD, cell, seconds and voxels (TSV)");
     app->add_flag("--force", o->force, "replace the world the folder holds, if it is another one");
+    app->add_option("--shard", o->shard, "build share K of N (K from 0) of a world that N jobs build, then --finish");
+    app->add_flag("--finish", o->finish, "finish a world built in shards (after every --shard K/N is done)");
+    app->add_option("--mpi-schedule", o->mpi_schedule, "under mpirun: dynamic (units on demand) or static (balanced shares)")
+        ->check(CLI::IsMember({"dynamic", "static"}))
+        ->capture_default_str();
     return {app, [o] { return world_build(*o); }};
 }
 

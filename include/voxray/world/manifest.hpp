@@ -123,7 +123,9 @@ void check_grid(const world_manifest& m, Check&& check) {
 
 }  // namespace manifest_detail
 
-inline void write_manifest(const std::filesystem::path& dir, const world_manifest& m) {
+// A manifest under any name: a sharded build's shards list their chunks in one each
+// (world/build/shard.hpp). `path` is the file; its folder is created.
+inline void write_manifest_file(const std::filesystem::path& path, const world_manifest& m) {
     using manifest_detail::put;
     std::vector<unsigned char> b(manifest_header_bytes + manifest_chunk_bytes * m.chunks.size(), 0);
     put<std::uint32_t>(b, 0, manifest_magic);
@@ -152,8 +154,8 @@ inline void write_manifest(const std::filesystem::path& dir, const world_manifes
     sum.bytes(b.data(), 88);
     sum.bytes(b.data() + manifest_header_bytes, b.size() - manifest_header_bytes);
     put<std::uint64_t>(b, 88, sum.h);
-    std::filesystem::create_directories(dir);
-    auto tmp = manifest_path(dir);
+    if (path.has_parent_path()) std::filesystem::create_directories(path.parent_path());
+    auto tmp = path;
     tmp += ".tmp";
     std::error_code ec;
     {
@@ -165,13 +167,16 @@ inline void write_manifest(const std::filesystem::path& dir, const world_manifes
             fail("world manifest ", tmp.string(), ": write failed (", b.size(), " bytes; is the disk full?)");
         }
     }
-    std::filesystem::rename(tmp, manifest_path(dir), ec);
-    if (ec) fail("world manifest ", manifest_path(dir).string(), ": cannot rename ", tmp.string(), " into place (", ec.message(), ")");
+    std::filesystem::rename(tmp, path, ec);
+    if (ec) fail("world manifest ", path.string(), ": cannot rename ", tmp.string(), " into place (", ec.message(), ")");
 }
 
-inline world_manifest read_manifest(const std::filesystem::path& dir) {
+inline void write_manifest(const std::filesystem::path& dir, const world_manifest& m) {
+    write_manifest_file(manifest_path(dir), m);
+}
+
+inline world_manifest read_manifest_file(const std::filesystem::path& path) {
     using manifest_detail::get;
-    auto path = manifest_path(dir);
     std::string name = path.string();
     std::error_code ec;
     auto size = std::filesystem::file_size(path, ec);
@@ -243,6 +248,8 @@ inline world_manifest read_manifest(const std::filesystem::path& dir) {
     }
     return m;
 }
+
+inline world_manifest read_manifest(const std::filesystem::path& dir) { return read_manifest_file(manifest_path(dir)); }
 
 // A chunk the manifest lists, read from its folder and checked against the manifest: its
 // size before anything is read (the manifest's file_bytes), then after the reader's own

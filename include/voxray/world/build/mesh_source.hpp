@@ -6,6 +6,7 @@
 // world never exist at once, and a mesh can be voxelized past the 4096 a whole-model
 // voxelization allows.
 #pragma once
+#include <algorithm>
 #include <cstdint>
 #include <set>
 #include <vector>
@@ -58,15 +59,19 @@ public:
     // The cells that tiles with triangles overlap.
     std::vector<glm::ivec3> cells(const world_grid& g) const {
         std::set<glm::ivec3, ivec3_less> out;
-        for (std::size_t t = 0; t + 1 < bins_.offsets.size(); ++t) {
-            if (bins_.offsets[t + 1] == bins_.offsets[t]) continue;
-            glm::ivec3 lo = bins_.tile_coord(int(t)) * io::detail::tile_edge;
-            glm::ivec3 a = cell_of(lo, g.origin, g.chunk_bits), b = cell_of(lo + io::detail::tile_edge - 1, g.origin, g.chunk_bits);
-            for (int z = a.z; z <= b.z; ++z)
-                for (int y = a.y; y <= b.y; ++y)
-                    for (int x = a.x; x <= b.x; ++x) out.insert({x, y, z});
-        }
+        for_each_tile_cell(g, [&](glm::ivec3 cell, std::uint64_t) { out.insert(cell); });
         return {out.begin(), out.end()};
+    }
+
+    // The work of each of `cells` (sorted, as cells() gives them): the triangles binned
+    // to the tiles it overlaps. An estimate that balances shards.
+    std::vector<std::uint64_t> cell_work(const world_grid& g, const std::vector<glm::ivec3>& cells) const {
+        std::vector<std::uint64_t> work(cells.size(), 0);
+        for_each_tile_cell(g, [&](glm::ivec3 cell, std::uint64_t triangles) {
+            auto it = std::lower_bound(cells.begin(), cells.end(), cell, ivec3_less{});
+            if (it != cells.end() && *it == cell) work[std::size_t(it - cells.begin())] += triangles;
+        });
+        return work;
     }
 
     // The cell's voxels (thread-safe: all state is the call's own).
@@ -103,6 +108,20 @@ public:
     }
 
 private:
+    // f(cell, triangles) for every cell a tile with triangles overlaps, once per such tile.
+    template <class F>
+    void for_each_tile_cell(const world_grid& g, F&& f) const {
+        for (std::size_t t = 0; t + 1 < bins_.offsets.size(); ++t) {
+            std::uint64_t n = bins_.offsets[t + 1] - bins_.offsets[t];
+            if (!n) continue;
+            glm::ivec3 lo = bins_.tile_coord(int(t)) * io::detail::tile_edge;
+            glm::ivec3 a = cell_of(lo, g.origin, g.chunk_bits), b = cell_of(lo + io::detail::tile_edge - 1, g.origin, g.chunk_bits);
+            for (int z = a.z; z <= b.z; ++z)
+                for (int y = a.y; y <= b.y; ++y)
+                    for (int x = a.x; x <= b.x; ++x) f(glm::ivec3(x, y, z), n);
+        }
+    }
+
     const io::triangle_mesh* mesh_;
     int resolution_;
     io::voxel_grid_map map_;

@@ -72,6 +72,24 @@ public:
         });
         return {out.begin(), out.end()};
     }
+    // The work of each of `cells` (sorted, as cells() gives them): the voxels of the model
+    // chunks whose centre is in it, over every copy. An estimate that balances shards.
+    std::vector<std::uint64_t> cell_work(const world_grid& g, const std::vector<glm::ivec3>& cells) const {
+        std::vector<std::pair<glm::ivec3, std::uint64_t>> chunks;
+        model_->for_each_chunk([&](glm::ivec3 origin, const voxel_model::chunk& c) {
+            auto n = std::uint64_t(std::count_if(c.voxels.begin(), c.voxels.end(), [](std::uint8_t v) { return v != 0; }));
+            chunks.emplace_back(origin + voxel_model::chunk_edge / 2, n);
+        });
+        std::vector<std::uint64_t> work(cells.size(), 0);
+        for_each_copy([&](glm::ivec3 shift) {
+            for (auto& [centre, n] : chunks) {
+                glm::ivec3 cell = cell_of(centre + shift, g.origin, g.chunk_bits);
+                auto it = std::lower_bound(cells.begin(), cells.end(), cell, ivec3_less{});
+                if (it != cells.end() && *it == cell) work[std::size_t(it - cells.begin())] += n;
+            }
+        });
+        return work;
+    }
     // The cell's voxels: those of the model chunks that overlap the cell, of the copies
     // that can reach it (a few per axis, however many copies there are).
     chunk_voxels voxels(const world_grid& g, glm::ivec3 cell, bool colours) const {

@@ -41,11 +41,15 @@
 namespace voxray {
 
 // Where a build is: chunks done of the LOD under way (the number of LODs is known only
-// when LOD 0 is done), and the time since the build began.
+// when LOD 0 is done), and the time since the build began; and the chunk job just done:
+// its key, its time and its voxels (what a scheduling study needs).
 struct world_build_progress {
     int lod = 0, top_lod = 0;
     std::uint64_t done = 0, total = 0;  // chunk jobs of this LOD
     double seconds = 0;
+    chunk_key chunk;
+    double chunk_seconds = 0;  // making it (reading and writing files included); 0 when resumed
+    std::uint64_t chunk_voxels = 0;
 };
 
 struct world_build_options {
@@ -105,14 +109,16 @@ inline bool resumable(const std::filesystem::path& path, std::uint32_t hash, int
 
 // One build at a time in a folder: two would write the same .tmp names and mix their
 // chunks. An advisory lock (flock) on a file in the folder, released when the build ends
-// or its process dies.
+// or its process dies. The shards of one sharded build share the folder's lock (each
+// holds its own shard's exclusively); a whole build and the finish hold it alone.
 class folder_lock {
 public:
-    explicit folder_lock(const std::filesystem::path& dir) {
-        auto path = dir / ".voxray-build.lock";
+    explicit folder_lock(const std::filesystem::path& dir, bool shared = false,
+                         const std::filesystem::path& file = ".voxray-build.lock") {
+        auto path = dir / file;
         fd_ = ::open(path.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
         if (fd_ < 0) fail("world build: cannot open ", path.string(), " (", std::strerror(errno), ")");
-        if (::flock(fd_, LOCK_EX | LOCK_NB) != 0) {
+        if (::flock(fd_, (shared ? LOCK_SH : LOCK_EX) | LOCK_NB) != 0) {
             int e = errno;
             ::close(fd_);
             if (e == EWOULDBLOCK)
@@ -150,111 +156,163 @@ inline void remove_unlisted_chunks(const std::filesystem::path& dir, const world
 
 }  // namespace world_build_detail
 
+// The steps of a build, shared by the whole build (build_world below) and the sharded
+// one (world/build/sharded_build.hpp): the world's header from the source and options,
+// chunk levels built on all threads, and the manifest.
 template <class Source>
-world_build_report build_world(const Source& source, const std::filesystem::path& dir, const world_build_options& o) {
-    using namespace world_build_detail;
-    // An empty path would name the current folder's files (and remove its manifest).
-    if (dir.empty()) fail("world build: the output folder's path is empty");
-    auto start = std::chrono::steady_clock::now();
-    world_manifest m;
-    m.bounds = source.bounds();
-    m.grid = world_grid::fit(m.bounds, o.chunk_bits);
-    m.attributes = o.attributes;
-    m.colour_error = o.colour_error;
-    m.density = o.density;
-    m.source_hash = options_hash(source.hash(), o);
-    if (o.density < 1 || o.density > 8) fail("world build: density ", o.density, " is outside [1, 8]");
-    bool colours = o.attributes == svdag_attributes::colour_blocks;
-    chunk_dag_options dag{o.attributes, o.colour_error};
-    std::filesystem::create_directories(dir);
-    folder_lock lock(dir);
-    if (!o.replace && std::filesystem::exists(manifest_path(dir))) {
-        std::uint32_t there = 0;
-        try {
-            there = read_manifest(dir).source_hash;
-        } catch (const error&) {
-            there = ~m.source_hash;  // unreadable: treat as another world
-        }
-        if (there != m.source_hash)
-            fail("world build: ", dir.string(), " holds another world (source hash ", there, ", this build's ", m.source_hash,
-                 "): build into another folder, or replace it");
+class world_builder {
+public:
+    world_builder(const Source& source, const std::filesystem::path& dir, const world_build_options& o)
+        : source_(source), dir_(dir), o_(o), dag_{o.attributes, o.colour_error} {
+        // An empty path would name the current folder's files (and remove its manifest).
+        if (dir.empty()) fail("world build: the output folder's path is empty");
+        if (o.density < 1 || o.density > 8) fail("world build: density ", o.density, " is outside [1, 8]");
+        m_.bounds = source.bounds();
+        m_.grid = world_grid::fit(m_.bounds, o.chunk_bits);
+        m_.attributes = o.attributes;
+        m_.colour_error = o.colour_error;
+        m_.density = o.density;
+        m_.source_hash = world_build_detail::options_hash(source.hash(), o);
+        report_.lods.resize(std::size_t(m_.grid.top_lod) + 1);
+        std::filesystem::create_directories(dir);
     }
-    std::filesystem::remove(manifest_path(dir));  // an unfinished build has none
 
-    world_build_report report;
-    std::mutex mutex;  // guards m.chunks and the report while jobs run
-    // Runs job(key) for every key on all threads; a job returns its chunk (empty: no file).
-    auto run_level = [&](int lod, const std::vector<glm::ivec3>& cells, auto&& make) {
+    const world_manifest& header() const { return m_; }
+    world_build_report& report() { return report_; }
+
+    // A finished world of another source or options is kept unless o.replace; a folder
+    // being built has no manifest.
+    void claim_folder() {
+        if (!o_.replace && std::filesystem::exists(manifest_path(dir_))) {
+            std::uint32_t there = 0;
+            try {
+                there = read_manifest(dir_).source_hash;
+            } catch (const error&) {
+                there = ~m_.source_hash;  // unreadable: treat as another world
+            }
+            if (there != m_.source_hash)
+                fail("world build: ", dir_.string(), " holds another world (source hash ", there, ", this build's ",
+                     m_.source_hash, "): build into another folder, or replace it");
+        }
+        std::filesystem::remove(manifest_path(dir_));
+    }
+
+    // The LOD-0 chunks of `cells` from the source, then level by level up to `top` the
+    // chunks above them (`cells` must hold every LOD-0 cell under those). Appends the
+    // non-empty ones to `out`.
+    void build_up_from_source(const std::vector<glm::ivec3>& cells, int top, std::vector<manifest_chunk>& out) {
+        bool colours = o_.attributes == svdag_attributes::colour_blocks;
+        report_.cells_scanned += cells.size();
+        std::size_t first = out.size();
+        run_level(0, cells, out, [&](chunk_key key) {
+            return build_chunk(source_.voxels(m_.grid, key.cell, colours), key, o_.chunk_bits, dag_);
+        });
+        build_levels_above(0, top, out, first);
+    }
+
+    // Levels from + 1 .. top from the chunk files of the levels below; out[first..] must
+    // hold every chunk of LOD `from` under what is built.
+    void build_levels_above(int from, int top, std::vector<manifest_chunk>& out, std::size_t first = 0) {
+        for (int lod = from + 1; lod <= top; ++lod) {
+            std::set<glm::ivec3, ivec3_less> parents, below;  // `below`: the LOD n - 1 chunks
+            for (std::size_t i = first; i < out.size(); ++i)
+                if (out[i].key.lod == lod - 1) parents.insert(out[i].key.cell >> 1), below.insert(out[i].key.cell);
+            run_level(lod, std::vector<glm::ivec3>(parents.begin(), parents.end()), out,
+                      [&](chunk_key key) { return downsampled(key, below); });
+        }
+    }
+
+    // The manifest of `chunks`, then the removal of what it does not list.
+    void write_manifest_of(std::vector<manifest_chunk> chunks) {
+        m_.chunks = std::move(chunks);
+        m_.sort();
+        if (o_.before_manifest) o_.before_manifest(dir_);
+        write_manifest(dir_, m_);
+        world_build_detail::remove_unlisted_chunks(dir_, m_);
+    }
+
+    double seconds() const { return std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count(); }
+
+private:
+    // Runs make(key) for every cell of the level on all threads; a job returns its chunk
+    // (empty: no file); a sound file of this build already there is kept.
+    template <class Make>
+    void run_level(int lod, const std::vector<glm::ivec3>& cells, std::vector<manifest_chunk>& out, Make&& make) {
         auto level_start = std::chrono::steady_clock::now();
-        world_build_report::level stats;
+        auto& stats = report_.lods[std::size_t(lod)];
+        std::mutex mutex;  // guards `out`, the stats and the progress calls
         std::atomic<std::size_t> next{0};
         std::uint64_t done = 0;
-        unsigned threads = resolve_build_threads(o.threads, cells.size());
+        unsigned threads = resolve_build_threads(o_.threads, cells.size());
         run_build_threads(threads, [&](unsigned) {
             for (std::size_t i; (i = next.fetch_add(1)) < cells.size();) {
                 chunk_key key{lod, cells[i]};
-                auto path = chunk_file_path(dir, key);
+                auto path = chunk_file_path(dir_, key);
                 chunk_record c;
-                bool resumed = resumable(path, m.source_hash, o.chunk_bits, c);
+                auto job_start = std::chrono::steady_clock::now();
+                bool resumed = world_build_detail::resumable(path, m_.source_hash, o_.chunk_bits, c);
                 if (!resumed) {
                     c = make(key);
-                    c.source_hash = m.source_hash;
+                    c.source_hash = m_.source_hash;
                 }
                 std::uint64_t bytes = 0;
                 if (!c.empty()) {
                     if (!resumed) write_chunk_file(path, c);
                     bytes = std::filesystem::file_size(path);
                 }
+                double job = resumed ? 0 : std::chrono::duration<double>(std::chrono::steady_clock::now() - job_start).count();
                 std::lock_guard lock(mutex);
-                if (o.progress)
-                    o.progress({lod, m.grid.top_lod, ++done, cells.size(),
-                                std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count()});
+                if (o_.progress) o_.progress({lod, m_.grid.top_lod, ++done, cells.size(), seconds(), key, job, c.voxel_count});
                 if (c.empty()) continue;
-                m.chunks.push_back({key, c.voxel_count, bytes});
+                out.push_back({key, c.voxel_count, bytes});
                 ++stats.chunks;
                 stats.voxels += c.voxel_count;
                 stats.disk_bytes += bytes;
                 stats.resumed += resumed;
             }
         });
-        stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - level_start).count();
-        report.lods.push_back(stats);
-    };
-
-    // LOD 0 from the source.
-    auto cells = source.cells(m.grid);
-    report.cells_scanned = cells.size();
-    run_level(0, cells, [&](chunk_key key) { return build_chunk(source.voxels(m.grid, key.cell, colours), key, o.chunk_bits, dag); });
-
-    // LOD n from the files of LOD n - 1.
-    for (int lod = 1; lod <= m.grid.top_lod; ++lod) {
-        std::set<glm::ivec3, ivec3_less> parents, below;  // `below`: this build's LOD n - 1 chunks
-        for (auto& c : m.chunks)
-            if (c.key.lod == lod - 1) parents.insert(c.key.cell >> 1), below.insert(c.key.cell);
-        std::vector<glm::ivec3> list(parents.begin(), parents.end());
-        run_level(lod, list, [&](chunk_key key) {
-            std::array<chunk_voxels, 8> children;
-            std::array<const chunk_voxels*, 8> present{};
-            for (int o8 = 0; o8 < 8; ++o8) {
-                chunk_key child{lod - 1, key.cell * 2 + glm::ivec3(o8 & 1, (o8 >> 1) & 1, o8 >> 2)};
-                if (!below.count(child.cell)) continue;
-                chunk_record c = read_chunk_file(chunk_file_path(dir, child), o.chunk_bits);
-                for (auto& v : decode_svdag(c.dag)) {
-                    children[std::size_t(o8)].keys.push_back(chunk_voxels::key(v.position));
-                    children[std::size_t(o8)].values.push_back(v.attribute);
-                }
-                children[std::size_t(o8)].sort();
-                present[std::size_t(o8)] = &children[std::size_t(o8)];
-            }
-            return build_chunk(downsample(present, o.chunk_bits, o.density, colours), key, o.chunk_bits, dag);
-        });
+        stats.seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - level_start).count();
     }
-    m.sort();
-    if (o.before_manifest) o.before_manifest(dir);
-    write_manifest(dir, m);
-    remove_unlisted_chunks(dir, m);
-    report.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    return report;
+
+    // A chunk of LOD n from its (up to 8) children's files.
+    chunk_record downsampled(chunk_key key, const std::set<glm::ivec3, ivec3_less>& below) const {
+        std::array<chunk_voxels, 8> children;
+        std::array<const chunk_voxels*, 8> present{};
+        for (int o8 = 0; o8 < 8; ++o8) {
+            chunk_key child{key.lod - 1, key.cell * 2 + glm::ivec3(o8 & 1, (o8 >> 1) & 1, o8 >> 2)};
+            if (!below.count(child.cell)) continue;
+            chunk_record c = read_chunk_file(chunk_file_path(dir_, child), o_.chunk_bits);
+            for (auto& v : decode_svdag(c.dag)) {
+                children[std::size_t(o8)].keys.push_back(chunk_voxels::key(v.position));
+                children[std::size_t(o8)].values.push_back(v.attribute);
+            }
+            children[std::size_t(o8)].sort();
+            present[std::size_t(o8)] = &children[std::size_t(o8)];
+        }
+        bool colours = o_.attributes == svdag_attributes::colour_blocks;
+        return build_chunk(downsample(present, o_.chunk_bits, o_.density, colours), key, o_.chunk_bits, dag_);
+    }
+
+    const Source& source_;
+    std::filesystem::path dir_;
+    const world_build_options& o_;
+    chunk_dag_options dag_;
+    world_manifest m_;
+    world_build_report report_;
+    std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now();
+};
+
+// The whole build in this process.
+template <class Source>
+world_build_report build_world(const Source& source, const std::filesystem::path& dir, const world_build_options& o) {
+    world_builder<Source> b(source, dir, o);
+    world_build_detail::folder_lock lock(dir);
+    b.claim_folder();
+    std::vector<manifest_chunk> chunks;
+    b.build_up_from_source(source.cells(b.header().grid), b.header().grid.top_lod, chunks);
+    b.write_manifest_of(std::move(chunks));
+    b.report().seconds = b.seconds();
+    return b.report();
 }
 
 }  // namespace voxray
