@@ -51,6 +51,12 @@ else
     echo "FAIL no shared mesh at $data/mesh/stanford_bunny.ply"; failures=$((failures + 1))
 fi
 
+# The documented Slurm script (docs/slurm/world_build.sh), with a stand-in sbatch that runs
+# the array's jobs and then the finish here.
+PATH="$(dirname "$0")/fake_slurm:$PATH" VOXRAY="$tool" bash "$(dirname "$0")/../../docs/slurm/world_build.sh" \
+    builtin:terrain:256 "$work/slurm" 4 --tile 3 1 2 --chunk-bits 5 > /dev/null
+same "$work/one" "$work/slurm" "docs/slurm/world_build.sh: a 4-job array, then the finish"
+
 # The same frames from a distributed build as from one process.
 for w in one mpi2; do
     "$tool" world-fly "$work/$w" --backend cpu --frames 2 --width 64 --height 36 --png-dir "$work/fly_$w" > /dev/null

@@ -6,7 +6,8 @@
 // so a build that was interrupted resumes where it stopped. The manifest is written last;
 // then the chunk files it does not list (an earlier world's) are removed. A lock keeps a
 // second build out of the folder, and a finished world of another source is replaced
-// only when asked (world_build_options::replace).
+// only when asked (world_build_options::replace). The same steps (world_builder) serve
+// builds shared among processes: world/build/sharded_build.hpp, voxray/mpi/world_build.hpp.
 //
 // A source offers
 //   box3i bounds() const;                                   // of its solid voxels
@@ -34,6 +35,7 @@
 #include "voxray/model/build_threads.hpp"
 #include "voxray/svdag/decode.hpp"
 #include "voxray/world/build/chunk_dag.hpp"
+#include "voxray/world/build/shard_files.hpp"
 #include "voxray/world/chunk_file.hpp"
 #include "voxray/world/lod.hpp"
 #include "voxray/world/manifest.hpp"
@@ -217,9 +219,15 @@ public:
             std::set<glm::ivec3, ivec3_less> parents, below;  // `below`: the LOD n - 1 chunks
             for (std::size_t i = first; i < out.size(); ++i)
                 if (out[i].key.lod == lod - 1) parents.insert(out[i].key.cell >> 1), below.insert(out[i].key.cell);
-            run_level(lod, std::vector<glm::ivec3>(parents.begin(), parents.end()), out,
-                      [&](chunk_key key) { return downsampled(key, below); });
+            build_level_from_below(lod, std::vector<glm::ivec3>(parents.begin(), parents.end()), below, out);
         }
+    }
+
+    // The chunks of LOD `lod` at `cells`, each from the files of its children that
+    // `below` (the LOD n - 1 chunks there are) holds. Appends the non-empty ones to `out`.
+    void build_level_from_below(int lod, const std::vector<glm::ivec3>& cells, const std::set<glm::ivec3, ivec3_less>& below,
+                                std::vector<manifest_chunk>& out) {
+        run_level(lod, cells, out, [&](chunk_key key) { return downsampled(key, below); });
     }
 
     // The manifest of `chunks`, then the removal of what it does not list.
@@ -308,6 +316,7 @@ world_build_report build_world(const Source& source, const std::filesystem::path
     world_builder<Source> b(source, dir, o);
     world_build_detail::folder_lock lock(dir);
     b.claim_folder();
+    std::filesystem::remove_all(shards_folder(dir));  // a sharded build's leftovers: this build replaces it
     std::vector<manifest_chunk> chunks;
     b.build_up_from_source(source.cells(b.header().grid), b.header().grid.top_lod, chunks);
     b.write_manifest_of(std::move(chunks));

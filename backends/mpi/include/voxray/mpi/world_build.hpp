@@ -1,7 +1,7 @@
 // The world build over the ranks of an MPI communicator (component voxray::mpi: needs
 // <mpi.h>; the rest of voxray builds without it). Every rank reads the source itself (a
 // scene or mesh on a shared filesystem) and writes its chunks into the shared folder;
-// nothing large goes over MPI: the plan, one counter, the chunk lists at the end.
+// nothing large goes over MPI: the plan, a counter, the chunk lists (32 bytes a chunk).
 //
 //   MPI_Init(...);
 //   build_world_mpi(model_source(model), "world/", options, MPI_COMM_WORLD);  // on every rank
@@ -12,7 +12,9 @@
 // 3. The units, up to the split LOD: `dynamic` hands them out heaviest first from a counter
 //    on rank 0 (one MPI_Fetch_and_op a unit: a rank that finishes early takes the next);
 //    `static_split` gives each rank its balanced share, as --shard K/N does.
-// 4. Rank 0 gathers the chunk lists, builds the LODs above the split and the manifest.
+// 4. The LODs above the split, level by level with a barrier each: the ranks share each
+//    level's chunks (the same two schedules) and then every rank learns them.
+// 5. Rank 0 writes the manifest.
 // A failure on any rank fails the build on every rank with that rank's message (no rank
 // waits forever on one that threw). A killed rank takes mpirun's job down; running it
 // again resumes, as every build does. The folder is byte for byte the one build_world writes.
@@ -31,6 +33,7 @@
 #include <cstring>
 #include <memory>
 #include <numeric>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -101,26 +104,59 @@ inline std::vector<std::int64_t> plan_numbers(const shard_plan& p) {
     return out;
 }
 
-// Every rank's chunk lists, on rank 0.
-inline std::vector<manifest_chunk> gather_chunks(MPI_Comm comm, const std::vector<manifest_chunk>& mine) {
-    int rank = 0, size = 1;
-    MPI_Comm_rank(comm, &rank);
+// Every rank's chunks, on every rank.
+inline std::vector<manifest_chunk> allgather_chunks(MPI_Comm comm, const std::vector<manifest_chunk>& mine) {
+    int size = 1;
     MPI_Comm_size(comm, &size);
     auto words = pack(mine);
     long long count = (long long)words.size();
-    std::vector<long long> counts(std::size_t(size), 0);
-    MPI_Gather(&count, 1, MPI_LONG_LONG, counts.data(), 1, MPI_LONG_LONG, 0, comm);
     auto ranks = std::size_t(size);
-    std::vector<int> ints(ranks, 0), offsets(ranks, 0);
+    std::vector<long long> counts(ranks, 0);
+    MPI_Allgather(&count, 1, MPI_LONG_LONG, counts.data(), 1, MPI_LONG_LONG, comm);
     long long total = std::accumulate(counts.begin(), counts.end(), 0ll);
-    if (rank == 0 && total > 0x7fffffffll) fail("world build: ", total / 4, " chunks are too many to gather over MPI");
-    for (int r = 0; r < size; ++r) {
-        ints[std::size_t(r)] = int(counts[std::size_t(r)]);
-        if (r) offsets[std::size_t(r)] = offsets[std::size_t(r) - 1] + ints[std::size_t(r) - 1];
+    if (total > 0x7fffffffll) fail("world build: ", total / 4, " chunks are too many to gather over MPI");
+    std::vector<int> ints(ranks, 0), offsets(ranks, 0);
+    for (std::size_t r = 0; r < ranks; ++r) {
+        ints[r] = int(counts[r]);
+        if (r) offsets[r] = offsets[r - 1] + ints[r - 1];
     }
-    std::vector<std::uint64_t> all(rank == 0 ? std::size_t(total) : 0);
-    MPI_Gatherv(words.data(), int(count), MPI_UINT64_T, all.data(), ints.data(), offsets.data(), MPI_UINT64_T, 0, comm);
+    std::vector<std::uint64_t> all(static_cast<std::size_t>(total), 0);
+    MPI_Allgatherv(words.data(), int(count), MPI_UINT64_T, all.data(), ints.data(), offsets.data(), MPI_UINT64_T, comm);
     return unpack(all);
+}
+
+// Calls job(i) for the items i in [0, n) this rank takes: each rank takes the next one
+// as it becomes free, from a counter on rank 0 (one MPI_Fetch_and_op an item). Collective;
+// a failure fails every rank (agree) once every item is taken.
+template <class Job>
+void take_in_turn(MPI_Comm comm, std::size_t n, Job&& job) {
+    int rank = 0;
+    MPI_Comm_rank(comm, &rank);
+    long long* counter = nullptr;
+    MPI_Win win;
+    MPI_Win_allocate(rank == 0 ? MPI_Aint(sizeof(long long)) : 0, sizeof(long long), MPI_INFO_NULL, comm, &counter, &win);
+    if (rank == 0) {
+        MPI_Win_lock(MPI_LOCK_EXCLUSIVE, 0, 0, win);
+        *counter = 0;
+        MPI_Win_unlock(0, win);
+    }
+    MPI_Barrier(comm);
+    std::string failure;
+    for (;;) {
+        long long one = 1, next = 0;
+        MPI_Win_lock(MPI_LOCK_SHARED, 0, 0, win);
+        MPI_Fetch_and_op(&one, &next, MPI_LONG_LONG, 0, 0, MPI_SUM, win);
+        MPI_Win_unlock(0, win);
+        if (next >= (long long)n) break;
+        if (!failure.empty()) continue;  // keep taking items, so the others finish sooner
+        try {
+            job(std::size_t(next));
+        } catch (const std::exception& e) {
+            failure = e.what();
+        }
+    }
+    MPI_Win_free(&win);
+    agree(comm, failure);
 }
 
 // Sums the per-LOD counts of every rank's report into rank 0's (the others keep theirs).
@@ -176,7 +212,7 @@ world_build_report build_world_mpi(const Source& source, const std::filesystem::
         lock = std::make_unique<world_build_detail::folder_lock>(dir);
         b->claim_folder();
     });
-    // 3. The units.
+    // 3. The units, from the source up to the split.
     std::vector<manifest_chunk> chunks;
     if (schedule == mpi_schedule::static_split) {
         together(comm, [&] {
@@ -189,41 +225,33 @@ world_build_report build_world_mpi(const Source& source, const std::filesystem::
         std::vector<std::size_t> order(split.units.size());
         std::iota(order.begin(), order.end(), std::size_t(0));
         std::stable_sort(order.begin(), order.end(), [&](auto a, auto c) { return split.units[a].work > split.units[c].work; });
-        long long* counter = nullptr;
-        MPI_Win win;
-        MPI_Win_allocate(rank == 0 ? MPI_Aint(sizeof(long long)) : 0, sizeof(long long), MPI_INFO_NULL, comm, &counter, &win);
-        if (rank == 0) {
-            MPI_Win_lock(MPI_LOCK_EXCLUSIVE, 0, 0, win);
-            *counter = 0;
-            MPI_Win_unlock(0, win);
-        }
-        MPI_Barrier(comm);
-        std::string failure;
-        for (;;) {
-            long long one = 1, next = 0;
-            MPI_Win_lock(MPI_LOCK_SHARED, 0, 0, win);
-            MPI_Fetch_and_op(&one, &next, MPI_LONG_LONG, 0, 0, MPI_SUM, win);
-            MPI_Win_unlock(0, win);
-            if (next >= (long long)order.size()) break;
-            if (!failure.empty()) continue;  // keep taking units, so the others finish sooner
-            try {
-                auto& unit = split.units[order[std::size_t(next)]];
-                b->build_up_from_source(unit.cells, split.split_lod, chunks);
-            } catch (const std::exception& e) {
-                failure = e.what();
-            }
-        }
-        MPI_Win_free(&win);
-        agree(comm, failure);
+        take_in_turn(comm, order.size(), [&](std::size_t next) {
+            b->build_up_from_source(split.units[order[next]].cells, split.split_lod, chunks);
+        });
     }
-    // 4. Above the split, and the manifest, on rank 0.
-    auto all = gather_chunks(comm, chunks);
+    // 4. The LODs above the split, level by level (a barrier each): every rank builds its
+    // part of the level from the files below, then all learn the level's chunks.
+    auto all = allgather_chunks(comm, chunks);
+    const world_grid& g = b->header().grid;
+    for (int lod = split.split_lod + 1; lod <= g.top_lod; ++lod) {
+        std::set<glm::ivec3, ivec3_less> parents, below;
+        for (auto& c : all)
+            if (c.key.lod == lod - 1) parents.insert(c.key.cell >> 1), below.insert(c.key.cell);
+        std::vector<glm::ivec3> list(parents.begin(), parents.end()), mine;
+        std::vector<manifest_chunk> level;
+        if (schedule == mpi_schedule::static_split) {
+            for (std::size_t i = std::size_t(rank); i < list.size(); i += std::size_t(size)) mine.push_back(list[i]);
+            together(comm, [&] { b->build_level_from_below(lod, mine, below, level); });
+        } else {
+            take_in_turn(comm, list.size(), [&](std::size_t next) { b->build_level_from_below(lod, {list[next]}, below, level); });
+        }
+        auto built = allgather_chunks(comm, level);
+        all.insert(all.end(), built.begin(), built.end());
+    }
+    // 5. The manifest, on rank 0.
     reduce_report(comm, b->report());
     together(comm, [&] {
-        if (rank != 0) return;
-        const world_grid& g = b->header().grid;
-        b->build_levels_above(split.split_lod, g.top_lod, all);
-        b->write_manifest_of(std::move(all));
+        if (rank == 0) b->write_manifest_of(std::move(all));
     });
     b->report().seconds = b->seconds();
     return b->report();
