@@ -57,6 +57,14 @@ struct brick_codec {
         std::uint32_t w = load(brick + occupancy_words + i / per_word);
         return Payload((w >> ((i % per_word) * payload_bits)) & value_mask);
     }
+    // Voxels i0 .. i0 + n - 1 (a run along x) into out: one load per payload word.
+    static void get_run(const std::uint32_t* brick, std::uint32_t i0, std::uint32_t n, Payload* out) {
+        for (std::uint32_t i = i0, end = i0 + n; i < end;) {
+            std::uint32_t w = load(brick + occupancy_words + i / per_word);
+            for (std::uint32_t k = i % per_word; k < per_word && i < end; ++k, ++i)
+                *out++ = Payload((w >> (k * payload_bits)) & value_mask);
+        }
+    }
 
     // The value replicated into every slot of a payload word.
     static constexpr std::uint32_t replicate(Payload v) {

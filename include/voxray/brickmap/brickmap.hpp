@@ -142,10 +142,10 @@ public:
                     for (int z = lo.z; z < hi.z; ++z)
                         for (int y = lo.y; y < hi.y; ++y) {
                             Payload* row = out + (std::size_t(z - box.min.z) * e.y + std::size_t(y - box.min.y)) * e.x;
-                            for (int x = lo.x; x < hi.x; ++x) {
-                                glm::uvec3 q(glm::ivec3(x, y, z) - world_.min);
-                                row[x - box.min.x] = brick ? codec::get(brick, local_index(q)) : Payload(VX_BM_CELL_VALUE(c));
-                            }
+                            Payload* first_voxel = row + (lo.x - box.min.x);
+                            auto n = std::uint32_t(hi.x - lo.x);
+                            if (!brick) std::fill(first_voxel, first_voxel + n, Payload(VX_BM_CELL_VALUE(c)));
+                            else codec::get_run(brick, local_index(glm::uvec3(glm::ivec3(lo.x, y, z) - world_.min)), n, first_voxel);
                         }
                 }
     }
