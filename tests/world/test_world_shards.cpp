@@ -55,7 +55,7 @@ void expect_same_world_however_split(const Source& source, const world_build_opt
     for (unsigned n : splits) {
         SCOPED_TRACE("shards: " + std::to_string(n));
         temp_dir dir;
-        for (unsigned k = n; k-- > 0;) build_world_shard(source, dir.path, o, {k, n});  // any order
+        for (unsigned k = n; k-- > 0;) build_world(source, dir.path, o, {k, n});  // any order
         EXPECT_FALSE(fs::exists(manifest_path(dir.path))) << "a sharded build is unfinished until the finish";
         finish_world_build(source, dir.path, o);
         EXPECT_EQ(folder_bytes(dir.path), expected);
@@ -74,7 +74,7 @@ TEST(world_shards, a_tiled_scene_in_shards_running_at_once_is_byte_identical) {
     build_world(source, whole.path, o);
     std::vector<std::thread> shards;
     for (unsigned k = 0; k < 3; ++k)
-        shards.emplace_back([&, k] { EXPECT_EQ(error_of_none([&] { build_world_shard(source, dir.path, o, {k, 3}); }), ""); });
+        shards.emplace_back([&, k] { EXPECT_EQ(error_of_none([&] { build_world(source, dir.path, o, {k, 3}); }), ""); });
     for (auto& t : shards) t.join();
     finish_world_build(source, dir.path, o);
     EXPECT_EQ(folder_bytes(dir.path), folder_bytes(whole.path));
@@ -123,11 +123,11 @@ TEST(world_shards, an_interrupted_shard_and_finish_resume) {
     stops.progress = [&](const world_build_progress&) {
         if (++calls == 6) throw std::runtime_error("killed");
     };
-    EXPECT_THROW(build_world_shard(source, dir.path, stops, {1, 2}), std::runtime_error);
-    build_world_shard(source, dir.path, o, {0, 2});
+    EXPECT_THROW(build_world(source, dir.path, stops, {1, 2}), std::runtime_error);
+    build_world(source, dir.path, o, {0, 2});
     std::string unfinished = error_of([&] { finish_world_build(source, dir.path, o); });
     EXPECT_NE(unfinished.find("shard 1 of 2 has not finished"), std::string::npos) << unfinished;
-    auto resumed = build_world_shard(source, dir.path, o, {1, 2});
+    auto resumed = build_world(source, dir.path, o, {1, 2});
     EXPECT_GE(resumed.lods[0].resumed, 3u) << "the chunks written before the stop are kept";
     calls = 0;
     EXPECT_THROW(finish_world_build(source, dir.path, stops), std::runtime_error);
@@ -140,21 +140,21 @@ TEST(world_shards, shards_of_other_arguments_are_refused_naming_the_difference) 
     model_source source(model);
     world_build_options o = small_chunks();
     temp_dir dir;
-    build_world_shard(source, dir.path, o, {0, 3});
+    build_world(source, dir.path, o, {0, 3});
     world_build_options denser = o;
     denser.density = 3;
-    std::string m = error_of([&] { build_world_shard(source, dir.path, denser, {1, 3}); });
+    std::string m = error_of([&] { build_world(source, dir.path, denser, {1, 3}); });
     EXPECT_NE(m.find("density 2"), std::string::npos) << m;
     EXPECT_NE(m.find("--density"), std::string::npos) << m;
-    m = error_of([&] { build_world_shard(source, dir.path, o, {1, 4}); });
+    m = error_of([&] { build_world(source, dir.path, o, {1, 4}); });
     EXPECT_NE(m.find("shards 3"), std::string::npos) << m;
     voxel_model other = world_test_model();
     other.set({0, 0, 0}, other.get({0, 0, 0}) ? 0 : 7);
-    m = error_of([&] { build_world_shard(model_source(other), dir.path, o, {2, 3}); });
+    m = error_of([&] { build_world(model_source(other), dir.path, o, {2, 3}); });
     EXPECT_NE(m.find("source_hash"), std::string::npos) << m;
     m = error_of([&] { finish_world_build(source, dir.path, denser); });
     EXPECT_NE(m.find("--density"), std::string::npos) << m;
-    m = error_of([&] { build_world_shard(source, dir.path, o, {3, 3}); });
+    m = error_of([&] { build_world(source, dir.path, o, {3, 3}); });
     EXPECT_NE(m.find("shard 3 of 3 does not exist"), std::string::npos) << m;
     temp_dir empty;
     m = error_of([&] { finish_world_build(source, empty.path, o); });
@@ -166,14 +166,14 @@ TEST(world_shards, a_shard_list_that_names_a_missing_file_is_refused) {
     model_source source(model);
     world_build_options o = small_chunks();
     temp_dir dir;
-    build_world_shard(source, dir.path, o, {0, 2});
-    build_world_shard(source, dir.path, o, {1, 2});
+    build_world(source, dir.path, o, {0, 2});
+    build_world(source, dir.path, o, {1, 2});
     world_manifest listed = read_manifest_file(shard_file(dir.path, 1, 2, ".vxwm"));
     ASSERT_FALSE(listed.chunks.empty());
     fs::remove(chunk_file_path(dir.path, listed.chunks.front().key));
     std::string m = error_of([&] { finish_world_build(source, dir.path, o); });
     EXPECT_NE(m.find("it is missing: run shard 1/2 again"), std::string::npos) << m;
-    build_world_shard(source, dir.path, o, {1, 2});
+    build_world(source, dir.path, o, {1, 2});
     finish_world_build(source, dir.path, o);
     EXPECT_TRUE(fs::exists(manifest_path(dir.path)));
     EXPECT_FALSE(fs::exists(shards_folder(dir.path)));

@@ -132,7 +132,7 @@ int world_build(const build_options& o) {
     }
     auto build = [&](const auto& source) {
         if (ranks) return ranks->build(source, o.out, wo, o.mpi_schedule);
-        if (shard) return build_world_shard(source, o.out, wo, *shard);
+        if (shard) return build_world(source, o.out, wo, *shard);
         if (o.finish) return finish_world_build(source, o.out, wo);
         return build_world(source, o.out, wo);
     };

@@ -1,7 +1,7 @@
 // A world built by N independent processes (batch jobs: a Slurm array, Kubernetes jobs),
 // then finished once:
 //
-//   for K in 0..N-1, anywhere, in any order, at once or not:  build_world_shard(source, dir, o, {K, N});
+//   for K in 0..N-1, anywhere, in any order, at once or not:  build_world(source, dir, o, {K, N});
 //   once every shard is done:                                   finish_world_build(source, dir, o);
 //
 // Each shard builds its units (world/build/shard_plan.hpp) from the source up to the split
@@ -39,9 +39,10 @@ shard_plan plan_of(const Source& source, const world_build_options& o, unsigned 
 }  // namespace sharded_build_detail
 
 // Shard `shard.index` of `shard.count`: its units up to the split LOD, and their list.
+// (build_world without a shard, world_build.hpp, builds the whole world at once.)
 template <class Source>
-world_build_report build_world_shard(const Source& source, const std::filesystem::path& dir, const world_build_options& o,
-                                     world_shard shard) {
+world_build_report build_world(const Source& source, const std::filesystem::path& dir, const world_build_options& o,
+                               world_shard shard) {
     sharded_build_detail::check_shard(shard);
     world_builder<Source> b(source, dir, o);
     world_build_detail::folder_lock shared(dir, true);
