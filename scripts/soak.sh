@@ -23,7 +23,8 @@ RAYS=${SOAK_RAYS:-100000000}
 PER_RUN=${SOAK_RAYS_PER_RUN:-4000000}
 FUZZ_SECONDS=${SOAK_FUZZ_SECONDS:-600}
 RESOLUTION=${SOAK_MESH_RESOLUTION:-512}
-DATA=${VOXRAY_DATA_DIR:-$ROOT/../shared/data}
+cd "$ROOT"  # the results name scenes relative to the repository
+DATA=${VOXRAY_DATA_DIR:-../shared/data}
 OUT=$ROOT/docs/soak
 VOXRAY=$BUILD_DIR/voxray
 mkdir -p "$OUT"

@@ -15,7 +15,8 @@ configure_and_build voxray_tool
 
 RUNS=${1:-3}
 LARGE=${LARGE_RESOLUTION:-16384}
-DATA=${VOXRAY_DATA_DIR:-$ROOT/../shared/data}
+cd "$ROOT"  # the results name scenes relative to the repository
+DATA=${VOXRAY_DATA_DIR:-../shared/data}
 OUT=$ROOT/docs/bench/world_scaling
 WORK=${WORK:-/tmp/voxray-world-scaling}
 VOXRAY=$BUILD_DIR/voxray
