@@ -153,8 +153,15 @@ int world_build(const build_options& o) {
                 std::fprintf(stderr, "building a world from %s tiled %d x %d x %d ...\n", spec.c_str(), o.tile[0], o.tile[1], o.tile[2]);
             report = build(model_source(model, {o.tile[0], o.tile[1], o.tile[2]}));
         }
-    } catch (const error&) {
-        if (quiet) return 1;  // every rank has the message; rank 0 prints it
+    } catch (const error& e) {
+        // A failure all ranks share: rank 0 reports it and its exit fails the job (a
+        // non-zero exit here could make mpirun stop rank 0 before it prints). A rank's own
+        // failure (its scene unreadable, say): it says so itself, and mpirun stops the job.
+        if (quiet && mpi_ranks::failed_on_every_rank(e)) return 0;
+        if (quiet) {
+            std::fprintf(stderr, "voxray world-build: error on rank %d of %d: %s\n", ranks->rank(), ranks->size(), e.what());
+            return 1;
+        }
         throw;
     }
     if (times) times->finish();

@@ -36,6 +36,8 @@ std::unique_ptr<mpi_ranks> mpi_ranks::if_launched() {
 
 mpi_ranks::~mpi_ranks() { MPI_Finalize(); }
 
+bool mpi_ranks::failed_on_every_rank(const std::exception& e) { return dynamic_cast<const mpi_ranks_failed*>(&e) != nullptr; }
+
 namespace {
 mpi_schedule schedule_of(const std::string& s) {
     if (s == "dynamic") return mpi_schedule::dynamic;
@@ -63,6 +65,8 @@ std::unique_ptr<mpi_ranks> mpi_ranks::if_launched() {
 }
 
 mpi_ranks::~mpi_ranks() = default;
+
+bool mpi_ranks::failed_on_every_rank(const std::exception&) { return false; }
 
 world_build_report mpi_ranks::build(const model_source&, const std::filesystem::path&, const world_build_options&,
                                     const std::string&) const {

@@ -20,6 +20,8 @@ public:
 
     int rank() const { return rank_; }
     int size() const { return size_; }
+    // Whether e is a failure every rank threw alike (then rank 0 alone reports it).
+    static bool failed_on_every_rank(const std::exception& e);
     // schedule: "dynamic" or "static" (--mpi-schedule).
     world_build_report build(const model_source& s, const std::filesystem::path& dir, const world_build_options& o,
                              const std::string& schedule) const;

@@ -45,8 +45,18 @@ enum class mpi_schedule { dynamic, static_split };
 
 namespace mpi_build_detail {
 
-// Collective: when any rank failed, every rank throws the lowest failing rank's message,
-// "rank R of N: ..." (so one rank's report says it all).
+}  // namespace mpi_build_detail
+
+// What every rank throws when one failed (mpi_build_detail::agree): the same message on
+// each, so one rank's report says it all.
+struct mpi_ranks_failed : error {
+    explicit mpi_ranks_failed(const std::string& what) : error(what) {}
+};
+
+namespace mpi_build_detail {
+
+// Collective: when any rank failed, every rank throws mpi_ranks_failed with the lowest
+// failing rank's message, "rank R of N: ...".
 inline void agree(MPI_Comm comm, const std::string& failure) {
     int rank = 0, size = 1;
     MPI_Comm_rank(comm, &rank);
@@ -57,7 +67,7 @@ inline void agree(MPI_Comm comm, const std::string& failure) {
     char text[2048] = {};
     if (rank == first) std::strncpy(text, failure.c_str(), sizeof text - 1);
     MPI_Bcast(text, int(sizeof text), MPI_CHAR, first, comm);
-    fail("rank ", first, " of ", size, ": ", text);
+    throw mpi_ranks_failed("rank " + std::to_string(first) + " of " + std::to_string(size) + ": " + text);
 }
 
 // Runs f, and agree()s on its failure.
