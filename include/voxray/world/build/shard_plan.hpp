@@ -45,7 +45,6 @@ std::vector<std::uint64_t> cell_work(const Source& source, const world_grid& g, 
 }
 
 struct build_unit {
-    glm::ivec3 cell;                 // at the split LOD
     std::vector<glm::ivec3> cells;   // its LOD-0 cells, sorted
     std::uint64_t work = 0;
 };
@@ -72,11 +71,10 @@ struct shard_split {
         std::map<glm::ivec3, build_unit, ivec3_less> by_cell;
         for (std::size_t i = 0; i < cells.size(); ++i) {
             build_unit& u = by_cell[cells[i] >> s.split_lod];
-            u.cell = cells[i] >> s.split_lod;
             u.cells.push_back(cells[i]);
             u.work += std::max<std::uint64_t>(work[i], 1);
         }
-        for (auto& [cell, unit] : by_cell) s.units.push_back(std::move(unit));
+        for (auto& [cell, unit] : by_cell) s.units.push_back(std::move(unit));  // in the map's z-y-x order
         return s;
     }
 

@@ -30,6 +30,7 @@
 #include <functional>
 #include <mutex>
 #include <set>
+#include <span>
 #include <vector>
 
 #include "voxray/model/build_threads.hpp"
@@ -216,11 +217,24 @@ public:
     // hold every chunk of LOD `from` under what is built.
     void build_levels_above(int from, int top, std::vector<manifest_chunk>& out, std::size_t first = 0) {
         for (int lod = from + 1; lod <= top; ++lod) {
-            std::set<glm::ivec3, ivec3_less> parents, below;  // `below`: the LOD n - 1 chunks
-            for (std::size_t i = first; i < out.size(); ++i)
-                if (out[i].key.lod == lod - 1) parents.insert(out[i].key.cell >> 1), below.insert(out[i].key.cell);
-            build_level_from_below(lod, std::vector<glm::ivec3>(parents.begin(), parents.end()), below, out);
+            auto level = level_above(std::span(out).subspan(first), lod);
+            build_level_from_below(lod, level.cells, level.below, out);
         }
+    }
+
+    // What LOD `lod` is made from: its cells (the parents of the LOD n - 1 chunks among
+    // `chunks`, sorted) and those children.
+    struct level_inputs {
+        std::vector<glm::ivec3> cells;
+        std::set<glm::ivec3, ivec3_less> below;
+    };
+    static level_inputs level_above(std::span<const manifest_chunk> chunks, int lod) {
+        level_inputs in;
+        std::set<glm::ivec3, ivec3_less> parents;
+        for (auto& c : chunks)
+            if (c.key.lod == lod - 1) parents.insert(c.key.cell >> 1), in.below.insert(c.key.cell);
+        in.cells.assign(parents.begin(), parents.end());
+        return in;
     }
 
     // The chunks of LOD `lod` at `cells`, each from the files of its children that

@@ -33,7 +33,6 @@
 #include <cstring>
 #include <memory>
 #include <numeric>
-#include <set>
 #include <string>
 #include <vector>
 
@@ -244,16 +243,15 @@ world_build_report build_world_mpi(const Source& source, const std::filesystem::
     auto all = allgather_chunks(comm, chunks);
     const world_grid& g = b->header().grid;
     for (int lod = split.split_lod + 1; lod <= g.top_lod; ++lod) {
-        std::set<glm::ivec3, ivec3_less> parents, below;
-        for (auto& c : all)
-            if (c.key.lod == lod - 1) parents.insert(c.key.cell >> 1), below.insert(c.key.cell);
-        std::vector<glm::ivec3> list(parents.begin(), parents.end()), mine;
+        auto in = world_builder<Source>::level_above(all, lod);
         std::vector<manifest_chunk> level;
         if (schedule == mpi_schedule::static_split) {
-            for (std::size_t i = std::size_t(rank); i < list.size(); i += std::size_t(size)) mine.push_back(list[i]);
-            together(comm, [&] { b->build_level_from_below(lod, mine, below, level); });
+            std::vector<glm::ivec3> mine;
+            for (std::size_t i = std::size_t(rank); i < in.cells.size(); i += std::size_t(size)) mine.push_back(in.cells[i]);
+            together(comm, [&] { b->build_level_from_below(lod, mine, in.below, level); });
         } else {
-            take_in_turn(comm, list.size(), [&](std::size_t next) { b->build_level_from_below(lod, {list[next]}, below, level); });
+            take_in_turn(comm, in.cells.size(),
+                         [&](std::size_t next) { b->build_level_from_below(lod, {in.cells[next]}, in.below, level); });
         }
         auto built = allgather_chunks(comm, level);
         all.insert(all.end(), built.begin(), built.end());
