@@ -101,9 +101,26 @@ function(voxray_add_structure name)
             message(FATAL_ERROR "voxray_add_structure(${name}): ${dir}/${f} is missing")
         endif()
     endforeach()
-    set_property(GLOBAL APPEND PROPERTY VOXRAY_STRUCTURES ${name})
     set_property(GLOBAL APPEND PROPERTY VOXRAY_STRUCTURE_TYPES "${arg_TYPE}")
-    voxray_kernel_files(kernel_files ${name}/kernel.h)
+    voxray_add_kernel(${name} KERNEL ${name}/kernel.h HEADER voxray/${name}/${name}.hpp PASSES ${arg_PASSES})
+endfunction()
+
+# Scenes over one world kind (include/voxray/entities/): the world's kernel and the entity
+# pass as one more kernel, scene_<world>, from entities/worlds/<world>.h and .hpp. Not a
+# structure of the type list: a scene is built from a world and instances, not a model.
+function(voxray_add_scene world)
+    set_property(GLOBAL APPEND PROPERTY VOXRAY_SCENE_WORLD_TYPES "voxray::${world}")
+    voxray_add_kernel(scene_${world} KERNEL entities/worlds/${world}.h HEADER voxray/entities/worlds/${world}.hpp)
+endfunction()
+
+# voxray_add_kernel(<name> KERNEL <file> HEADER <file> [PASSES <file>...]): the GPU programs
+# of one kernel, vx_<name>_trace in KERNEL (under include/voxray/), whose host header HEADER
+# (under include/) declares its tag (kernels/kernel_tag.inc) and compiles its CPU lanes.
+function(voxray_add_kernel name)
+    cmake_parse_arguments(arg "" "KERNEL;HEADER" "PASSES" ${ARGN})
+    set_property(GLOBAL APPEND PROPERTY VOXRAY_STRUCTURES ${name})
+    set_property(GLOBAL PROPERTY VOXRAY_KERNEL_HEADER_${name} ${arg_HEADER})
+    voxray_kernel_files(kernel_files ${arg_KERNEL})
     set(pass_files "")
     set(entry_lines "VX_OPENCL_ENTRY(${name})\n")
     foreach(f ${arg_PASSES})
@@ -113,7 +130,7 @@ function(voxray_add_structure name)
         string(APPEND entry_lines "VX_OPENCL_PASS_ENTRY(${name})\n")
     endif()
 
-    # OpenCL C: preamble, dialect, kernel (and passes), the entry macros and this structure's entry lines.
+    # OpenCL C: preamble, dialect, kernel (and passes), the entry macros and this kernel's entry lines.
     set(cl ${VOXRAY_GENERATED}/opencl/${name}.cl)
     set(entry ${VOXRAY_GENERATED}/opencl/${name}_entry.cl)
     file(CONFIGURE OUTPUT ${entry} CONTENT "${entry_lines}")
@@ -130,7 +147,7 @@ function(voxray_add_structure name)
             COMMENT "Checking the ${name} kernel as OpenCL C 1.2 (clang)" VERBATIM)
         list(APPEND outputs ${stamp})
     endif()
-    voxray_shader_include(${name} include_outputs FILES ${dir}/kernel.h)
+    voxray_shader_include(${name} include_outputs FILES ${PROJECT_SOURCE_DIR}/include/voxray/${arg_KERNEL})
     list(APPEND outputs ${include_outputs})
     if(TARGET voxray_opencl)
         voxray_opencl_add_program(${name} ${cl})
@@ -148,9 +165,12 @@ function(voxray_finish_structures)
     get_property(types GLOBAL PROPERTY VOXRAY_STRUCTURE_TYPES)
     set(includes "")
     foreach(name ${names})
-        string(APPEND includes "#include \"voxray/${name}/${name}.hpp\"\n")
+        get_property(header GLOBAL PROPERTY VOXRAY_KERNEL_HEADER_${name})
+        string(APPEND includes "#include \"${header}\"\n")
     endforeach()
     string(REPLACE ";" ", " type_list "${types}")
+    get_property(scene_worlds GLOBAL PROPERTY VOXRAY_SCENE_WORLD_TYPES)
+    string(REPLACE ";" ", " scene_world_list "${scene_worlds}")
     file(CONFIGURE OUTPUT ${VOXRAY_GENERATED}/voxray/generated/structures.hpp CONTENT
 "// Generated from the voxray_add_structure calls (cmake/voxray_kernels.cmake): do not edit.
 #pragma once
@@ -159,6 +179,8 @@ function(voxray_finish_structures)
 namespace voxray::registered {
 
 using structures = type_list<@type_list@>;
+// The world kinds scene<World> (voxray/entities/) has a kernel for (voxray_add_scene).
+using scene_worlds = type_list<@scene_world_list@>;
 
 }  // namespace voxray::registered
 " @ONLY)

@@ -4,10 +4,10 @@
 # passes, each a build that configures only the test folders its ctest labels select:
 #   TSan           built with clang++-14 and without OpenCL, Vulkan and Embree (which also
 #                  proves such a build works with clang); builds and runs just the test
-#                  folders brickmap, naadf, svdag, world and sync: the threaded editing,
-#                  builds and streaming, and the incremental updates;
+#                  folders brickmap, naadf, svdag, world, entities and sync: the threaded
+#                  editing, builds, streaming and entity moves, and the incremental updates;
 #   ASan + UBSan   one build with every backend and one ctest over every CPU label (cpu,
-#                  io, mesh, meshing, malformed, brickmap, naadf, svdag, world, sync, conformance,
+#                  io, mesh, meshing, malformed, brickmap, naadf, svdag, world, entities, sync, conformance,
 #                  nanovdb) and every test labelled opencl or vulkan (the backend tests,
 #                  both GPU conformance groups, the every-backend tests of sync, brickmap,
 #                  svdag and world).
@@ -24,7 +24,7 @@ echo "== ctest (all backends required)"
 export VOXRAY_REQUIRE_ALL_BACKENDS=1
 (cd "$BUILD_DIR" && ctest --output-on-failure -j"$(nproc)" --timeout 900)
 
-CPU_LABELS='^(cpu|io|mesh|meshing|malformed|brickmap|naadf|svdag|world|sync|conformance|nanovdb)$'
+CPU_LABELS='^(cpu|io|mesh|meshing|malformed|brickmap|naadf|svdag|world|entities|sync|conformance|nanovdb)$'
 # Sanitizer builds: -O1 with line tables only, which compiles about twice as fast as -O2 -g.
 # PoCL's cache is the main build's: its kernels are compiled already.
 SANITIZED=(-DCMAKE_BUILD_TYPE=RelWithDebInfo "-DCMAKE_CXX_FLAGS_RELWITHDEBINFO=-O1 -g1 -DNDEBUG" -DVOXRAY_BUILD_TOOLS=OFF
@@ -33,8 +33,8 @@ export LSAN_OPTIONS="suppressions=$ROOT/scripts/lsan.supp"
 
 tsan_pass() {
     local dir=${TSAN_DIR:-$BUILD_DIR-tsan} start=$SECONDS
-    local labels='^(brickmap|naadf|svdag|world|sync)$'
-    echo "== ThreadSanitizer (clang++-14, CPU only): tests labelled brickmap, naadf, svdag, world, sync ($dir)"
+    local labels='^(brickmap|naadf|svdag|world|entities|sync)$'
+    echo "== ThreadSanitizer (clang++-14, CPU only): tests labelled brickmap, naadf, svdag, world, entities, sync ($dir)"
     cmake -S "$ROOT" -B "$dir" "${SANITIZED[@]}" -DVOXRAY_SANITIZE=thread -DCMAKE_CXX_COMPILER=clang++-14 \
         -DCMAKE_DISABLE_FIND_PACKAGE_OpenCL=ON -DCMAKE_DISABLE_FIND_PACKAGE_Vulkan=ON \
         -DCMAKE_DISABLE_FIND_PACKAGE_embree=ON "-DVOXRAY_TEST_LABELS=$labels" >/dev/null

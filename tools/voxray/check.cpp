@@ -10,6 +10,7 @@
 #include "edits.hpp"
 #include "mesh_check.hpp"
 #include "engines.hpp"
+#include "entity_scene.hpp"
 #include "output.hpp"
 #include "scene.hpp"
 #include "voxray/check/compare.hpp"
@@ -23,7 +24,8 @@ struct check_options {
     scene_options scene;
     std::size_t rays = 1000000;
     std::uint64_t seed = 1;
-    int edits = 0;
+    int edits = 0, frames = 1;
+    bool rays_given = false;
     std::string structures = exact_structure_names(), backends, json;
     bool mesh = false;
     mesh_check_options mesh_options;
@@ -57,8 +59,23 @@ void apply_edits(const std::vector<region_edit>& edits, voxel_model& model, std:
     for (auto& t : tracers) t->after_edits(model);
 }
 
+// A scene file: every world kind with scenes among --structures x every backend, each frame
+// against the brute-force reference (entities/reference.hpp), which walks every instance
+// for every ray: 20,000 rays a frame unless --rays says otherwise.
+int check_scene(const check_options& o) {
+    if (o.edits > 0 || o.mesh || !o.json.empty()) fail("--edits, --mesh and --json do not apply to a scene file");
+    std::string worlds;
+    for (auto& w : scene_world_names())
+        for (auto& s : split_names(o.structures))
+            if (s == w) worlds += (worlds.empty() ? "" : ",") + w;
+    if (worlds.empty()) fail("--structures ", o.structures, ": none has scenes with entities (those that do: dense, naadf)");
+    return check_scene_file(o.scene.scenes[0], o.scene, o.frames, o.rays_given ? o.rays : 20000, o.seed, worlds, o.backends);
+}
+
 int check(const check_options& o) {
     if (!o.json.empty()) require_writable(o.json, "--json");
+    if (is_scene_description(o.scene.scenes[0])) return check_scene(o);
+    if (o.frames != 1) fail("--frames ", o.frames, ": only a scene file (.json) has frames");
     auto model = load_scene(o.scene.scenes[0], o.scene);
     box3i world = model.bounds();
     if (o.mesh) {
@@ -139,8 +156,10 @@ command add_check(CLI::App& parent) {
     auto o = std::make_shared<check_options>();
     for (auto& b : backend_names()) o->backends += (o->backends.empty() ? "" : ",") + b;
     o->scene.add_to(app, false);
-    app->add_option("--rays", o->rays, "rays to trace (half camera rays, half random)")
+    auto* rays = app->add_option("--rays", o->rays, "rays to trace (half camera rays, half random)")
         ->check(CLI::Range(std::size_t(1), std::size_t(100000000)))->capture_default_str();
+    app->add_option("--frames", o->frames, "frames of a scene file's motion, each checked")
+        ->check(CLI::Range(1, 100000))->capture_default_str();
     app->add_option("--structures", o->structures, "structures to check")
         ->check(names_from(all_structure_names(), "structure"))->capture_default_str();
     app->add_option("--backends", o->backends, "backends to check")
@@ -152,7 +171,11 @@ command add_check(CLI::App& parent) {
     app->add_flag("--mesh", o->mesh, "check the scene's chunk meshes instead: face sets, POP order, cracks");
     app->add_option("--mesh-views", o->mesh_options.views, "random views of the mesh crack tests")
         ->check(CLI::Range(1, 10000000))->capture_default_str();
-    return {app, [o] { o->mesh_options.seed = o->seed; return check(*o); }};
+    return {app, [o, rays] {
+        o->mesh_options.seed = o->seed;
+        o->rays_given = rays->count() > 0;
+        return check(*o);
+    }};
 }
 
 }  // namespace voxray::tool

@@ -6,6 +6,7 @@
 
 #include "cli.hpp"
 #include "engines.hpp"
+#include "entity_scene.hpp"
 #include "image_writer.hpp"
 #include "scene.hpp"
 #include "voxray/rays.hpp"
@@ -20,6 +21,7 @@ struct render_options {
     int width = 1280, height = 720, view = 0;
     std::vector<float> eye, target;
     float fov = 50.0f;
+    int frames = 1;
 };
 
 // Rays, hits, shadow rays and shadow hits, and the image: what a pixel costs.
@@ -42,6 +44,11 @@ int render(const render_options& o) {
     require_memory(bytes_per_pixel * std::uint64_t(o.width) * std::uint64_t(o.height),
                    "render " + std::to_string(o.width) + " x " + std::to_string(o.height) + " (" +
                        std::to_string(bytes_per_pixel) + " bytes a pixel)");
+    if (is_scene_description(o.scene.scenes[0])) {
+        if (!o.eye.empty()) fail("--eye: a scene file is rendered from the preset views (--view)");
+        return render_scene_file(o.scene.scenes[0], o.scene, o.frames, o.structure, o.backend, o.width, o.height, o.view, o.out);
+    }
+    if (o.frames != 1) fail("--frames ", o.frames, ": only a scene file (.json) has frames");
     auto model = load_scene(o.scene.scenes[0], o.scene);
     std::fprintf(stderr, "building %s ...\n", o.structure.c_str());
     auto structure = build_structure(o.structure, model);
@@ -88,6 +95,8 @@ command add_render(CLI::App& parent) {
         ->expected(3)->delimiter(',')->needs(eye);
     app->add_option("--fov", o->fov, "free camera's vertical field of view, degrees")
         ->check(finite_range(1.0, 179.0))->needs(eye)->capture_default_str();
+    app->add_option("--frames", o->frames, "frames of a scene file's motion, one image each (NAME_000.png ...)")
+        ->check(CLI::Range(1, 100000))->capture_default_str();
     return {app, [o] { return render(*o); }};
 }
 

@@ -8,3 +8,5 @@
 #include "voxray/kernels/stack.h"
 #include "voxray/kernels/bits.h"
 #include "voxray/svdag/walk.h"
+#include "voxray/entities/layout.h"
+#include "voxray/entities/pass.h"

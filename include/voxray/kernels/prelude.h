@@ -43,6 +43,7 @@ typedef bool vx_mask;
 #define vx_load(b, i) ((b)[(i)])
 #define vx_gather(b, i) ((b)[(i)])
 #define vx_gather_masked(b, m, i) ((m) ? (b)[(i)] : 0u)
+#define vx_blob_at(b, n) ((b) + (n))
 #define vx_f32_splat(x) ((float)(x))
 #define vx_i32_splat(x) ((int)(x))
 #define vx_u32_splat(x) ((uint)(x))
@@ -126,6 +127,12 @@ float vx_fmax(float a, float b) { return a > b ? a : b; }
 /* Structure data, rays and hits are reached by buffer device address: no descriptor
  * range limit (lavapipe's maxStorageBufferRange is 128 MiB) applies to them. */
 layout(buffer_reference, std430, buffer_reference_align = 4) readonly buffer vx_words { uint w[]; };
+/* The words from word n of b on (a structure inside another's blob: a scene's world). */
+vx_words vx_blob_at(vx_words b, uint n) {
+    uvec2 a = uvec2(b);
+    uint lo = a.x + n * 4u;
+    return vx_words(uvec2(lo, a.y + (lo < a.x ? 1u : 0u)));
+}
 /* Kernel code must not use GLSL keywords or reserved words (out, active, input...) or
  * OpenCL C ones (local, global, kernel...) as names. */
 
@@ -135,6 +142,7 @@ layout(buffer_reference, std430, buffer_reference_align = 4) readonly buffer vx_
 #define VX_STRUCT(name) struct name {
 #define VX_END_STRUCT(name) };
 #define VX_BLOB const std::uint32_t*
+#define vx_blob_at(b, n) ((b) + (n))
 #define VX_INF __builtin_inff()
 #define VX_INOUT(T) T&
 #define VX_REF(p) (p)

@@ -57,6 +57,7 @@ inline std::int32_t vx_f2i(float x) { return std::int32_t(x); }
 inline std::uint32_t vx_i2u(std::int32_t x) { return std::uint32_t(x); }
 inline std::int32_t vx_u2i(std::uint32_t x) { return std::int32_t(x); }
 inline std::uint32_t vx_f_bits(float x) { return std::bit_cast<std::uint32_t>(x); }
+inline float vx_bits_f(std::uint32_t x) { return std::bit_cast<float>(x); }
 inline float vx_floor(float x) { return std::floor(x); }
 inline float vx_f32_splat(float x) { return x; }
 inline std::int32_t vx_i32_splat(std::int32_t x) { return x; }
@@ -72,10 +73,15 @@ inline void vx_select_state_into(bool m, const State& a, State& into) {
 
 #include "voxray/kernels/dialect.h"
 
+// Scalar code over the lanes of m in turn (see simd_lanes.inc); here one lane.
+template <class F>
+inline vx_hit vx_each_lane(bool m, const vx_ray& r, const vx_hit& h, F&& f) {
+    return m ? f(r, h) : h;
+}
+
 // Frame words (world/frame/passes.h, scalar lanes only): one item per call, threads share the
 // frame, so counters and the visibility buffer use the same atomics as the GPUs.
 typedef std::uint64_t __attribute__((may_alias)) vx_frame_u64;
-inline float vx_bits_f(std::uint32_t x) { return std::bit_cast<float>(x); }
 inline std::uint32_t vx_frame_load(const std::uint32_t* f, std::uint32_t i) { return __atomic_load_n(f + i, __ATOMIC_RELAXED); }
 inline void vx_frame_store(std::uint32_t* f, std::uint32_t i, std::uint32_t v) { __atomic_store_n(f + i, v, __ATOMIC_RELAXED); }
 inline std::uint32_t vx_atomic_add(std::uint32_t* f, std::uint32_t i, std::uint32_t v) {

@@ -1,0 +1,104 @@
+/* Word layout of a scene: a world structure plus instances of entity models (moving,
+ * rotated voxel objects), shared by the host (entities/scene.hpp) and the kernels
+ * (entities/pass.h, entities/scene_kernel.h) in every dialect. 32-bit words; every offset
+ * is in words from the start of the scene blob.
+ *
+ *  scene blob
+ *  +----------------------------+ word 0
+ *  | header (16 words)          |  magic 'VXSC', version, world words, instance table,
+ *  |                            |  slots, BVH nodes, node count, leaf items, item count
+ *  +----------------------------+ VX_SC_WORLD (16: 64-byte aligned)
+ *  | the world's own blob       |  unchanged: its kernel walks it at this offset
+ *  +----------------------------+
+ *  | entity models              |  VX_EM_HEADER_WORDS header, occupancy bits, materials
+ *  +----------------------------+ header.instances
+ *  | instance slots             |  VX_SC_INSTANCE_WORDS each; a free slot has model word
+ *  |                            |  VX_SC_FREE_SLOT
+ *  +----------------------------+ header.nodes
+ *  | BVH nodes                  |  VX_SC_NODE_WORDS each, node 0 the root
+ *  +----------------------------+ header.items
+ *  | leaf items                 |  instance slot numbers, grouped by leaf
+ *  +----------------------------+
+ *
+ *  instance slot (16 words)                 BVH node (8 words)
+ *  0..8   M: world -> model rotation and    0..2  box min x, y, z (float, world voxels)
+ *         1/scale, rows (float)             3..5  box max x, y, z
+ *  9..11  P: position in the world (float)  6     inner: first child (the second follows)
+ *  12..14 C: model point at P, in voxels          leaf:  first leaf item
+ *         from the model's min corner       7     0 for an inner node, else the leaf's
+ *  15     word offset of the model record         item count
+ *
+ *  model record: header (16 words)          voxel (x, y, z) of a model, from its min corner:
+ *  0      extent x, y, z (3 words)          occupancy bit  x + ex * (y + ey * z) of the bits,
+ *  3      min corner x, y, z (int, the      material byte  the same index, 4 a word, low first
+ *         model's own coordinates)
+ *  6      offset of the occupancy bits     (words from the model record's start, so a
+ *  7      offset of the material bytes      record reads the same wherever it lies)
+ *
+ * A point w of the world lies at model point  M * (w - P) + C  (VX_SC_TO_MODEL): the same
+ * float operations, in the same order, on the host's reference and in every kernel, so
+ * every backend walks the same model ray. Affine, so t is the same in both frames.
+ */
+#ifndef VOXRAY_LAYOUT_ENTITIES_LAYOUT_H
+#define VOXRAY_LAYOUT_ENTITIES_LAYOUT_H
+
+#define VX_SC_MAGIC 0x43535856u /* "VXSC" little endian */
+#define VX_SC_VERSION 1u
+
+#define VX_SC_HEADER_MAGIC 0
+#define VX_SC_HEADER_VERSION 1
+#define VX_SC_HEADER_WORLD_WORDS 2
+#define VX_SC_HEADER_INSTANCES 3
+#define VX_SC_HEADER_SLOTS 4
+#define VX_SC_HEADER_NODES 5
+#define VX_SC_HEADER_NODE_COUNT 6
+#define VX_SC_HEADER_ITEMS 7
+#define VX_SC_HEADER_ITEM_COUNT 8
+#define VX_SC_HEADER_WORDS 16
+#define VX_SC_WORLD VX_SC_HEADER_WORDS
+
+#define VX_SC_INSTANCE_WORDS 16
+#define VX_SC_INSTANCE_M 0
+#define VX_SC_INSTANCE_P 9
+#define VX_SC_INSTANCE_C 12
+#define VX_SC_INSTANCE_MODEL 15u
+#define VX_SC_FREE_SLOT 0xFFFFFFFFu
+
+#define VX_SC_NODE_WORDS 8
+#define VX_SC_NODE_MIN 0
+#define VX_SC_NODE_MAX 3
+#define VX_SC_NODE_FIRST 6
+#define VX_SC_NODE_COUNT 7
+/* The deepest BVH the host builds (it splits by count, so depth ~ log2 of the instances):
+ * the kernel's stack of nodes still to visit holds one sibling per level. */
+#define VX_SC_MAX_DEPTH 32
+
+#define VX_EM_HEADER_WORDS 16
+#define VX_EM_EXTENT 0
+#define VX_EM_MIN 3
+#define VX_EM_BITS 6
+#define VX_EM_MATERIALS 7
+/* The largest model edge: the bit index of a model voxel stays within 32 bits. */
+#define VX_EM_MAX_EDGE 1024
+
+/* A hit on an instance says which one in the material word's upper bits: slot + 1 (0 is
+ * the world); the palette index stays in the low byte. */
+#define VX_SC_INSTANCE_SHIFT 8u
+#define VX_SC_MAX_SLOTS 0xFFFFFFu
+
+/* Model point of world point (wx, wy, wz) along axis row `a` of instance words m[]
+ * (any indexable of floats): M * (w - P) + C with a fixed order of operations. */
+#define VX_SC_TO_MODEL(m, a, wx, wy, wz)                                                              \
+    ((((m)[VX_SC_INSTANCE_M + 3 * (a)] * ((wx) - (m)[VX_SC_INSTANCE_P + 0]) +                          \
+       (m)[VX_SC_INSTANCE_M + 3 * (a) + 1] * ((wy) - (m)[VX_SC_INSTANCE_P + 1])) +                      \
+      (m)[VX_SC_INSTANCE_M + 3 * (a) + 2] * ((wz) - (m)[VX_SC_INSTANCE_P + 2])) +                       \
+     (m)[VX_SC_INSTANCE_C + (a)])
+/* Model direction of world direction (dx, dy, dz) along row `a`: M * d. */
+#define VX_SC_DIR_TO_MODEL(m, a, dx, dy, dz)                                                          \
+    (((m)[VX_SC_INSTANCE_M + 3 * (a)] * (dx) + (m)[VX_SC_INSTANCE_M + 3 * (a) + 1] * (dy)) +            \
+     (m)[VX_SC_INSTANCE_M + 3 * (a) + 2] * (dz))
+
+/* Bit index of model voxel (x, y, z) (from the min corner) in a model of extent (ex, ey). */
+#define VX_EM_INDEX(x, y, z, ex, ey) ((x) + (ex) * ((y) + (ey) * (z)))
+
+#endif

@@ -1,0 +1,65 @@
+/* The kernel of a scene over one kind of world (entities/layout.h): the world's own walk on
+ * its words at VX_SC_WORLD, then the entity pass (entities/pass.h) up to the world's hit.
+ * Written once for every world kind: entities/worlds/<world>.h includes it with
+ *   VX_SCENE_WORLD   the world kernel's name (naadf: its functions are vx_naadf_*),
+ *   VX_SCENE_HEADER  the type its _load returns,  VX_SCENE_STATE  the type its _begin returns,
+ * and gets vx_scene_<world>_load, _begin, _step, _status, _finish and _trace.
+ * No include guard: once per world kind and lane set (see kernels/kernel_tag.inc). */
+#if !defined(VX_SCENE_WORLD) || !defined(VX_SCENE_HEADER) || !defined(VX_SCENE_STATE)
+#error "define VX_SCENE_WORLD, VX_SCENE_HEADER and VX_SCENE_STATE before including entities/scene_kernel.h"
+#endif
+
+#define VX_SC_PASTE_(a, b, c) a##b##c
+#define VX_SC_PASTE(a, b, c) VX_SC_PASTE_(a, b, c)
+#define VX_SC_WORLD_FN(f) VX_SC_PASTE(vx_, VX_SCENE_WORLD, f)
+#define VX_SC_SCENE_FN(f) VX_SC_PASTE(vx_scene_, VX_SCENE_WORLD, f)
+
+/* The world's walk state and the ray, which the entity pass needs after the walk. */
+VX_STRUCT(VX_SC_SCENE_FN(_state))
+    VX_SCENE_STATE w;
+    vx_ray r;
+VX_END_STRUCT(VX_SC_SCENE_FN(_state))
+
+VX_FN VX_SCENE_HEADER VX_SC_SCENE_FN(_load)(VX_BLOB blob) {
+    return VX_SC_WORLD_FN(_load)(vx_blob_at(blob, VX_SC_WORLD));
+}
+
+VX_FN VX_SC_SCENE_FN(_state) VX_SC_SCENE_FN(_begin)(VX_SCENE_HEADER g, vx_ray r) {
+    VX_SC_SCENE_FN(_state) s;
+    s.w = VX_SC_WORLD_FN(_begin)(g, r);
+    s.r = r;
+    return s;
+}
+
+VX_FN VX_SC_SCENE_FN(_state) VX_SC_SCENE_FN(_step)(VX_BLOB blob, VX_SCENE_HEADER g, VX_SC_SCENE_FN(_state) s) {
+    s.w = VX_SC_WORLD_FN(_step)(vx_blob_at(blob, VX_SC_WORLD), g, s.w);
+    return s;
+}
+
+VX_FN vx_u32 VX_SC_SCENE_FN(_status)(VX_SC_SCENE_FN(_state) s) { return VX_SC_WORLD_FN(_status)(s.w); }
+
+/* The world's hit, then the entity pass of every lane whose world walk has ended. */
+VX_FN vx_hit VX_SC_SCENE_FN(_finish)(VX_BLOB blob, VX_SCENE_HEADER g, VX_SC_SCENE_FN(_state) s, uint mode) {
+    vx_hit h = VX_SC_WORLD_FN(_finish)(vx_blob_at(blob, VX_SC_WORLD), g, s.w, mode);
+#if defined(VX_DIALECT_CPP)
+    /* C++ lanes: the pass is scalar code (entities/pass.h), run for each lane in turn. */
+    return vx_each_lane(VX_SC_WORLD_FN(_status)(s.w) != VX_STATUS_ACTIVE, s.r, h,
+                        [&](const scalar::vx_ray& r, const scalar::vx_hit& world_hit) {
+                            return scalar::vx_entities_trace(blob, r, world_hit, mode);
+                        });
+#else
+    return vx_entities_trace(blob, s.r, h, mode);
+#endif
+}
+
+VX_FN vx_hit VX_SC_SCENE_FN(_trace)(VX_BLOB blob, vx_ray r, uint mode) {
+    VX_SCENE_HEADER g = VX_SC_SCENE_FN(_load)(blob);
+    VX_SC_SCENE_FN(_state) s = VX_SC_SCENE_FN(_begin)(g, r);
+    while (vx_any(VX_SC_SCENE_FN(_status)(s) == VX_STATUS_ACTIVE)) s = VX_SC_SCENE_FN(_step)(blob, g, s);
+    return VX_SC_SCENE_FN(_finish)(blob, g, s, mode);
+}
+
+#undef VX_SC_SCENE_FN
+#undef VX_SC_WORLD_FN
+#undef VX_SC_PASTE
+#undef VX_SC_PASTE_

@@ -1,0 +1,45 @@
+#!/usr/bin/env bash
+# Scene files (docs/entities.md) through the tool: `check SCENE.json --frames` on every world
+# kind x backend ends in "0 mismatches"; `render --frames` writes one image a frame; bad
+# scene files fail naming the file and the key.
+# Usage: entity_scenes.sh TOOL DATA_DIR WORK_DIR
+set -euo pipefail
+tool=$1 data=$2 work=$3
+here=$(cd "$(dirname "$0")" && pwd)
+mkdir -p "$work"
+source "$here/expect.sh"
+
+python3 "$here/../../scripts/make_entity_scene.py" "$work/herd.json" --world builtin:terrain:128 --count 400 \
+    --extent 128 128 40 --data "$data" > /dev/null
+out=$("$tool" check "$work/herd.json" --frames 4 --rays 4000 2>/dev/null) || { echo "FAIL check: exit $?"; echo "$out"; failures=$((failures + 1)); }
+echo "$out" | tail -n 10
+last=$(tail -n 1 <<< "$out")
+if [[ $last == "0 mismatches" ]] && grep -qE "^naadf +vulkan +[1-9][0-9]* +0$" <<< "$out"; then echo "ok   check: $last"
+else echo "FAIL check: last line '$last'"; failures=$((failures + 1)); fi
+
+"$tool" render "$work/herd.json" --frames 2 --structure naadf --backend cpu --width 160 --height 90 \
+    --out "$work/frame.png" > /dev/null 2>&1 || { echo "FAIL render: exit $?"; failures=$((failures + 1)); }
+for f in frame_000.png frame_001.png; do
+    [[ -s $work/$f ]] && echo "ok   render wrote $f" || { echo "FAIL render: no $f"; failures=$((failures + 1)); }
+done
+
+bad() {  # bad NAME JSON: a scene file holding JSON
+    printf '%s\n' "$2" > "$work/$1.json"
+    echo "$work/$1.json"
+}
+model='"models": {"m": {"file": "builtin:sphere30"}}'
+expect_failure zero_rotation 'bad_rotation.json: instances\[0\]: entity pose: rotation \(w 0.*cannot be normalised' \
+    "$tool" check "$(bad bad_rotation "{\"world\": \"builtin:sphere30\", $model, \"instances\": [{\"model\": \"m\", \"position\": [0, 0, 0], \"rotation\": [0, 0, 0, 0]}]}")"
+expect_failure unknown_model 'instances\[0\].model: no model named "deer"' \
+    "$tool" check "$(bad bad_model "{\"world\": \"builtin:sphere30\", $model, \"instances\": [{\"model\": \"deer\", \"position\": [0, 0, 0]}]}")"
+expect_failure short_position 'instances\[0\].position: expected 3 numbers' \
+    "$tool" render "$(bad bad_position "{\"world\": \"builtin:sphere30\", $model, \"instances\": [{\"model\": \"m\", \"position\": [0, 0]}]}")" --out "$work/x.png"
+expect_failure unknown_motion 'instances\[0\].motion.wobble: unknown motion' \
+    "$tool" check "$(bad bad_motion "{\"world\": \"builtin:sphere30\", $model, \"instances\": [{\"model\": \"m\", \"position\": [0, 0, 0], \"motion\": {\"wobble\": 1}}]}")"
+expect_failure no_world 'no_world.json: world: missing, or not a string' \
+    "$tool" check "$(bad no_world "{$model, \"instances\": []}")"
+expect_failure not_json 'not_json.json: not JSON' "$tool" check "$(bad not_json "{\"world\": ")"
+expect_failure missing_model_file 'error: .*nonexistent.vox' \
+    "$tool" check "$(bad missing_file "{\"world\": \"builtin:sphere30\", \"models\": {\"m\": {\"file\": \"nonexistent.vox\"}}, \"instances\": []}")"
+expect_failure frames_need_a_scene_file '--frames 3: only a scene file' "$tool" check builtin:sphere30 --frames 3
+finish
