@@ -1,5 +1,5 @@
 // Moves, adds and removes from several threads while tracers of two backends update and
-// trace, and while the world itself is edited (run under ThreadSanitizer by
+// trace, and while the world itself is edited and saved (run under ThreadSanitizer by
 // scripts/test.sh): no race, and once the threads are done every backend matches the
 // reference for the scene as it ended.
 #include <gtest/gtest.h>
@@ -7,6 +7,8 @@
 #include <thread>
 
 #include "scene_cases.hpp"
+#include "temp_dir.hpp"
+#include "voxray/naadf/serialize.hpp"
 #include "voxray/cpu.hpp"
 
 namespace voxray {
@@ -44,6 +46,10 @@ TEST(scene_threads, moves_from_several_threads_while_tracers_update) {
         for (int i = 0; i < 20; ++i) target.set(b.min + glm::ivec3(i, 0, 0), std::uint8_t(i % 2 ? 0 : 3));
     };
     std::thread editor([&] { edit(world); });
+    temp_dir dir;
+    std::thread saver([&] {  // the world saved while it is edited and scenes over it update
+        for (int i = 0; i < 3; ++i) save(world, dir.path / ("world_" + std::to_string(i) + ".vxna"));
+    });
     auto rays = scene_rays(s, b, 500, 8);
     std::vector<hit> hits(rays.size());
     for (int frame = 0; frame < 20; ++frame) {
@@ -54,6 +60,8 @@ TEST(scene_threads, moves_from_several_threads_while_tracers_update) {
     }
     for (auto& m : movers) m.join();
     editor.join();
+    saver.join();
+    EXPECT_TRUE(std::filesystem::exists(dir.path / "world_2.vxna"));
     simd.update(s);
     scalar.update(s);
     edit(world_model);

@@ -45,8 +45,9 @@ foreach(root ${roots})
         if(h MATCHES "^voxray/(generated|embree|nanovdb|mpi)/" OR (backend AND NOT TARGET voxray::${CMAKE_MATCH_1}))
             continue()
         endif()
-        # The world's frame passes run on the CPU lanes where no device runs them: voxray::cpu.
-        if(h STREQUAL "voxray/world/frame/frame.hpp" AND NOT TARGET voxray::cpu)
+        # The world's frame passes run on the CPU lanes where no device runs them, and the
+        # scenes' brute-force reference walks dense grids on them: voxray::cpu.
+        if((h STREQUAL "voxray/world/frame/frame.hpp" OR h STREQUAL "voxray/entities/reference.hpp") AND NOT TARGET voxray::cpu)
             continue()
         endif()
         string(APPEND includes "#include \"${h}\"\n")

@@ -20,6 +20,7 @@
 #include "bench_options.hpp"
 #include "cli.hpp"
 #include "engines.hpp"
+#include "entity_scene.hpp"
 #include "output.hpp"
 #include "voxray/check/compare.hpp"
 #include "voxray/check/ray_sets.hpp"
@@ -313,6 +314,7 @@ command add_bench(CLI::App& parent) {
         ->check(CLI::IsMember({"spheres", "voxel"}));
     app->add_option("--threads", o->threads, "threads that apply edits")->check(CLI::Range(1u, 256u))->capture_default_str();
     return {app, [o, app] {
+        if (!o->scene.scenes.empty() && is_scene_description(o->scene.scenes[0])) return bench_scene_file(*o);
         if (o->edits.empty()) return run_matrix(*o);
         bench_options edit = *o;  // editing defaults: the editable brickmap on the CPU
         if (!app->count("--structures")) edit.structures = "brickmap";

@@ -97,37 +97,34 @@ entity_instance read_instance(const scene_description& d, const json& v, std::si
 
 // ---- running a scene on one world kind and backend ----
 
-class entity_run {
-public:
-    virtual ~entity_run() = default;
-    // Moves every instance to where it stands at `frame` and brings the tracer up to date.
-    virtual void go_to(int frame) = 0;
-    virtual void closest_hit(std::span<const ray> rays, std::span<hit> hits) = 0;
-    virtual void any_hit(std::span<const ray> rays, std::span<hit> hits) = 0;
-    // The brute-force reference of the scene as it stands (entities/reference.hpp).
-    virtual std::vector<hit> reference(std::span<const ray> rays, std::uint32_t mode) = 0;
-    virtual std::uint64_t bytes_last_update() const = 0;
-    virtual double seconds_last_update() const = 0;
-    virtual pose where(std::uint32_t instance) const = 0;
-};
-
 template <class World, class Backend>
 class entity_run_of : public entity_run {
 public:
-    explicit entity_run_of(const loaded_scene& s) : s_(s), world_(s.world), scene_(world_) {
+    explicit entity_run_of(const loaded_scene& s) : s_(s), world_(s.world), scene_(world_), world_tracer_(world_) {
         for (auto& m : s.models) scene_.add_model(m);
         for (std::size_t i = 0; i < s.description.instances.size(); ++i)
             ids_.push_back(scene_.add(s.model_of[i], s.description.instances[i].start));
         tracer_ = std::make_unique<tracer<Backend, scene<World>>>(scene_);
     }
     void go_to(int frame) override {
+        move_all([&](std::uint32_t i) { return s_.description.instances[i].at(frame, s_.world.up_axis); });
+    }
+    void move_all(const std::function<pose(std::uint32_t)>& pose_of) override {
         auto start = std::chrono::steady_clock::now();
         std::vector<std::pair<instance_id, pose>> moves;
-        for (std::size_t i = 0; i < ids_.size(); ++i) moves.push_back({ids_[i], s_.description.instances[i].at(frame, s_.world.up_axis)});
+        moves.reserve(ids_.size());
+        for (std::size_t i = 0; i < ids_.size(); ++i) moves.push_back({ids_[i], pose_of(std::uint32_t(i))});
         scene_.move(moves);
         tracer_->update(scene_);
         seconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     }
+    void world_closest_hit(std::span<const ray> rays, std::span<hit> hits) override { world_tracer_.closest_hit(rays, hits); }
+    void world_any_hit(std::span<const ray> rays, std::span<hit> hits) override { world_tracer_.any_hit(rays, hits); }
+    unsigned cpu_threads() const override {
+        if constexpr (requires { tracer_->engine().threads(); }) return tracer_->engine().threads();
+        else return 0;
+    }
+    std::string device() const override { return Backend::name; }
     void closest_hit(std::span<const ray> rays, std::span<hit> hits) override { tracer_->closest_hit(rays, hits); }
     void any_hit(std::span<const ray> rays, std::span<hit> hits) override { tracer_->any_hit(rays, hits); }
     std::vector<hit> reference(std::span<const ray> rays, std::uint32_t mode) override {
@@ -145,20 +142,10 @@ private:
     scene<World> scene_;
     std::vector<instance_id> ids_;
     std::unique_ptr<tracer<Backend, scene<World>>> tracer_;
+    tracer<Backend, World> world_tracer_;
     std::unique_ptr<scene_reference> reference_;
     double seconds_ = 0;
 };
-
-std::unique_ptr<entity_run> make_entity_run(const std::string& world, const std::string& backend, const loaded_scene& s) {
-    std::unique_ptr<entity_run> run;
-    for_each_type(registered::scene_worlds{}, [&]<class W>() {
-        for_each_type(backends{}, [&]<class B>() {
-            if (!run && world == W::name && backend == B::name) run = std::make_unique<entity_run_of<W, B>>(s);
-        });
-    });
-    if (!run) fail("no scene runs on world ", world, " and backend ", backend);
-    return run;
-}
 
 // The check's rays: camera and random rays over the world and every instance's box, and as
 // many aimed at instances.
@@ -191,8 +178,20 @@ bool same_scene_hit(hit a, hit b) {
 
 }  // namespace
 
+std::unique_ptr<entity_run> make_entity_run(const std::string& world, const std::string& backend, const loaded_scene& s) {
+    std::unique_ptr<entity_run> run;
+    for_each_type(registered::scene_worlds{}, [&]<class W>() {
+        for_each_type(backends{}, [&]<class B>() {
+            if (!run && world == W::name && backend == B::name) run = std::make_unique<entity_run_of<W, B>>(s);
+        });
+    });
+    if (!run) fail("no scene runs on world ", world, " and backend ", backend);
+    return run;
+}
+
 pose entity_instance::at(int frame, int up) const {
     pose p = start;
+    if (frame == 0) return p;  // exactly the file's pose (a turn by 0 would still round)
     float f = float(frame);
     p.position += motion.linear * f;
     if (motion.spin.w != 0.0f)
@@ -250,34 +249,46 @@ int check_scene_file(const std::string& spec, const scene_options& o, int frames
     loaded_scene s = load_scene_description(spec, o);
     std::printf("%zu instances of %zu models over %s, %d frames, %zu rays a frame\n", s.description.instances.size(),
                 s.models.size(), scene_label(s.description.world).c_str(), frames, ray_count);
-    std::printf("%-8s %-11s %12s %12s\n", "world", "backend", "instance hits", "mismatches");
-    std::uint64_t mismatches = 0;
+    struct pair {
+        std::string world, backend;
+        std::unique_ptr<entity_run> run;
+        std::uint64_t instance_hits = 0, mismatches = 0;
+    };
+    std::vector<pair> pairs;
     for (auto& w : split_names(worlds))
         for (auto& b : split_names(backends)) {
             std::fprintf(stderr, "building the scene over %s on %s ...\n", w.c_str(), b.c_str());
-            auto run = make_entity_run(w, b, s);
-            std::uint64_t pair_mismatches = 0, instance_hits = 0;
-            for (int f = 0; f < frames; ++f) {
-                run->go_to(f);
-                auto rays = entity_rays(s, *run, f, ray_count, seed);
-                std::vector<hit> closest(rays.size()), any(rays.size());
-                run->closest_hit(rays, closest);
-                run->any_hit(rays, any);
-                auto want = run->reference(rays, VX_MODE_CLOSEST);
-                for (std::size_t i = 0; i < rays.size(); ++i) {
-                    instance_hits += hit_instance(want[i]) ? 1 : 0;
-                    if (same_scene_hit(closest[i], want[i]) && any[i].status == want[i].status) continue;
-                    if (pair_mismatches++ < 3)
-                        std::printf("  mismatch, frame %d ray %zu: o (%.9g %.9g %.9g) d (%.9g %.9g %.9g): got t=%.9g material=%u, want t=%.9g material=%u\n",
-                                    f, i, rays[i].origin.x, rays[i].origin.y, rays[i].origin.z, rays[i].direction.x,
-                                    rays[i].direction.y, rays[i].direction.z, closest[i].t, closest[i].material, want[i].t,
-                                    want[i].material);
-                }
-            }
-            std::printf("%-8s %-11s %12llu %12llu\n", w.c_str(), b.c_str(), (unsigned long long)instance_hits,
-                        (unsigned long long)pair_mismatches);
-            mismatches += pair_mismatches;
+            pairs.push_back({w, b, make_entity_run(w, b, s)});
         }
+    // Every pair stands at the same frame; the rays and the reference are the frame's, once.
+    for (int f = 0; f < frames; ++f) {
+        for (auto& p : pairs) p.run->go_to(f);
+        auto rays = entity_rays(s, *pairs.front().run, f, ray_count, seed);
+        std::fprintf(stderr, "frame %d: the reference on %zu rays ...\n", f, rays.size());
+        auto want = pairs.front().run->reference(rays, VX_MODE_CLOSEST);
+        std::vector<hit> closest(rays.size()), any(rays.size());
+        for (auto& p : pairs) {
+            p.run->closest_hit(rays, closest);
+            p.run->any_hit(rays, any);
+            for (std::size_t i = 0; i < rays.size(); ++i) {
+                p.instance_hits += hit_instance(want[i]) ? 1 : 0;
+                if (same_scene_hit(closest[i], want[i]) && any[i].status == want[i].status) continue;
+                if (p.mismatches++ < 3)
+                    std::printf("  mismatch, %s on %s, frame %d ray %zu: o (%.9g %.9g %.9g) d (%.9g %.9g %.9g): got t=%.9g "
+                                "material=%u, want t=%.9g material=%u\n",
+                                p.world.c_str(), p.backend.c_str(), f, i, rays[i].origin.x, rays[i].origin.y, rays[i].origin.z,
+                                rays[i].direction.x, rays[i].direction.y, rays[i].direction.z, closest[i].t, closest[i].material,
+                                want[i].t, want[i].material);
+            }
+        }
+    }
+    std::printf("%-8s %-11s %12s %12s\n", "world", "backend", "instance hits", "mismatches");
+    std::uint64_t mismatches = 0;
+    for (auto& p : pairs) {
+        std::printf("%-8s %-11s %12llu %12llu\n", p.world.c_str(), p.backend.c_str(), (unsigned long long)p.instance_hits,
+                    (unsigned long long)p.mismatches);
+        mismatches += p.mismatches;
+    }
     std::printf("%llu mismatches\n", (unsigned long long)mismatches);
     return mismatches == 0 ? 0 : 1;
 }

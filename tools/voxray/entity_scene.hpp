@@ -13,10 +13,15 @@
 // where they take a scene.
 #pragma once
 #include <filesystem>
+#include <functional>
+#include <memory>
+#include <span>
 #include <string>
 #include <vector>
 
 #include "scene.hpp"
+#include "voxray/core/hit.hpp"
+#include "voxray/core/ray.hpp"
 #include "voxray/entities/pose.hpp"
 #include "voxray/model/voxel_model.hpp"
 
@@ -62,8 +67,34 @@ loaded_scene load_scene_description(const std::string& spec, const scene_options
 // The world kinds scenes run over (registered::scene_worlds), by name.
 std::vector<std::string> scene_world_names();
 
+// A loaded scene built over one world kind and traced on one backend.
+class entity_run {
+public:
+    virtual ~entity_run() = default;
+    // Moves every instance to where it stands at `frame` and brings the tracer up to date.
+    virtual void go_to(int frame) = 0;
+    // Moves instance i to pose_of(i) for every instance, and brings the tracer up to date.
+    virtual void move_all(const std::function<pose(std::uint32_t)>& pose_of) = 0;
+    virtual void closest_hit(std::span<const ray> rays, std::span<hit> hits) = 0;
+    virtual void any_hit(std::span<const ray> rays, std::span<hit> hits) = 0;
+    // The world alone, without the scene (its own tracer on this backend).
+    virtual void world_closest_hit(std::span<const ray> rays, std::span<hit> hits) = 0;
+    virtual void world_any_hit(std::span<const ray> rays, std::span<hit> hits) = 0;
+    // The brute-force reference of the scene as it stands (entities/reference.hpp).
+    virtual std::vector<hit> reference(std::span<const ray> rays, std::uint32_t mode) = 0;
+    virtual std::uint64_t bytes_last_update() const = 0;
+    virtual double seconds_last_update() const = 0;
+    virtual pose where(std::uint32_t instance) const = 0;
+    virtual unsigned cpu_threads() const = 0;  // 0 on a device
+    virtual std::string device() const = 0;
+};
+std::unique_ptr<entity_run> make_entity_run(const std::string& world, const std::string& backend, const loaded_scene& s);
+
 int check_scene_file(const std::string& spec, const scene_options& o, int frames, std::size_t rays, std::uint64_t seed,
                      const std::string& worlds, const std::string& backends);
+struct bench_options;
+// `voxray bench SCENE.json` (entity_bench.cpp).
+int bench_scene_file(const bench_options& o);
 int render_scene_file(const std::string& spec, const scene_options& o, int frames, const std::string& world,
                       const std::string& backend, int width, int height, int view, const std::string& out);
 

@@ -148,7 +148,8 @@ VX_FN vx_bm_state vx_brickmap_step(VX_BLOB blob, vx_brickmap g, vx_bm_state s) {
 VX_FN vx_u32 vx_brickmap_status(vx_bm_state s) { return s.w.status; }
 
 /* The hit record; any-hit (a constant `mode`) reads no payload. */
-VX_FN vx_hit vx_brickmap_finish(VX_BLOB blob, vx_brickmap g, vx_bm_state s, uint mode) {
+VX_FN vx_hit vx_brickmap_finish(VX_BLOB blob, vx_brickmap g, vx_bm_state s, vx_ray r, uint mode) {
+    VX_UNUSED(r);
     vx_mask is_hit = s.w.status == VX_STATUS_HIT;
     vx_u32 payload = vx_u32_splat(0u);
     if (mode == VX_MODE_CLOSEST) {
@@ -167,5 +168,5 @@ VX_FN vx_hit vx_brickmap_trace(VX_BLOB blob, vx_ray r, uint mode) {
     vx_brickmap g = vx_brickmap_load(blob);
     vx_bm_state s = vx_brickmap_begin(g, r);
     while (vx_any(s.w.status == VX_STATUS_ACTIVE)) s = vx_brickmap_step(blob, g, s);
-    return vx_brickmap_finish(blob, g, s, mode);
+    return vx_brickmap_finish(blob, g, s, r, mode);
 }

@@ -49,7 +49,8 @@ VX_FN vx_dda vx_dense_grid_step(VX_BLOB blob, vx_dense_grid g, vx_dda d) {
 }
 
 /* The hit record; any-hit (a constant `mode`) reads no material. */
-VX_FN vx_hit vx_dense_grid_finish(VX_BLOB blob, vx_dense_grid g, vx_dda d, uint mode) {
+VX_FN vx_hit vx_dense_grid_finish(VX_BLOB blob, vx_dense_grid g, vx_dda d, vx_ray r, uint mode) {
+    VX_UNUSED(r);
     vx_mask is_hit = d.status == VX_STATUS_HIT;
     vx_u32 word = vx_u32_splat(0u);
     vx_u32 cell_bit = vx_i2u(VX_DG_LOCAL(d.cx, d.cy, d.cz));
@@ -74,5 +75,5 @@ VX_FN vx_hit vx_dense_grid_trace(VX_BLOB blob, vx_ray r, uint mode) {
     vx_dense_grid g = vx_dense_grid_load(blob);
     vx_dda d = vx_dense_grid_begin(g, r);
     while (vx_any(d.status == VX_STATUS_ACTIVE)) d = vx_dense_grid_step(blob, g, d);
-    return vx_dense_grid_finish(blob, g, d, mode);
+    return vx_dense_grid_finish(blob, g, d, r, mode);
 }

@@ -117,7 +117,8 @@ VX_FN vx_u32 vx_naadf_status(vx_na_state s) { return s.w.status; }
 
 /* The hit record; the type was kept at the hit step (any-hit reports none, like the
  * other structures). */
-VX_FN vx_hit vx_naadf_finish(VX_BLOB blob, vx_naadf g, vx_na_state s, uint mode) {
+VX_FN vx_hit vx_naadf_finish(VX_BLOB blob, vx_naadf g, vx_na_state s, vx_ray r, uint mode) {
+    VX_UNUSED(r);
     VX_UNUSED(blob);
     return vx_hit_from_walk(s.w, g.ox, g.oy, g.oz, mode == VX_MODE_CLOSEST ? s.type : vx_u32_splat(0u));
 }
@@ -127,5 +128,5 @@ VX_FN vx_hit vx_naadf_trace(VX_BLOB blob, vx_ray r, uint mode) {
     vx_naadf g = vx_naadf_load(blob);
     vx_na_state s = vx_naadf_begin(g, r);
     while (vx_any(s.w.status == VX_STATUS_ACTIVE)) s = vx_naadf_step(blob, g, s);
-    return vx_naadf_finish(blob, g, s, mode);
+    return vx_naadf_finish(blob, g, s, r, mode);
 }

@@ -41,7 +41,8 @@ VX_FN vx_sv_state vx_svdag_step(VX_BLOB blob, vx_svdag g, vx_sv_state s) {
 VX_FN vx_u32 vx_svdag_status(vx_sv_state s) { return s.w.status; }
 
 /* The hit record; any-hit (a constant `mode`) skips the attribute lookup. */
-VX_FN vx_hit vx_svdag_finish(VX_BLOB blob, vx_svdag g, vx_sv_state s, uint mode) {
+VX_FN vx_hit vx_svdag_finish(VX_BLOB blob, vx_svdag g, vx_sv_state s, vx_ray r, uint mode) {
+    VX_UNUSED(r);
     vx_mask is_hit = s.w.status == VX_STATUS_HIT;
     vx_u32 material = vx_u32_splat(0u);
     if (mode == VX_MODE_CLOSEST) material = vx_sv_material(blob, g.f, g.attribute_kind, s, is_hit);
@@ -53,5 +54,5 @@ VX_FN vx_hit vx_svdag_trace(VX_BLOB blob, vx_ray r, uint mode) {
     vx_svdag g = vx_svdag_load(blob);
     vx_sv_state s = vx_svdag_begin(g, r);
     while (vx_any(s.w.status == VX_STATUS_ACTIVE)) s = vx_svdag_step(blob, g, s);
-    return vx_svdag_finish(blob, g, s, mode);
+    return vx_svdag_finish(blob, g, s, r, mode);
 }

@@ -133,7 +133,8 @@ VX_FN vx_u32 vx_world_status(vx_wd_state st) { return st.walk.w.status; }
 
 /* The hit record; any-hit (a constant `mode`) skips the attribute lookup. A hit on a
  * coarse chunk reports the walk voxel it entered the coarse voxel through. */
-VX_FN vx_hit vx_world_finish(VX_BLOB blob, vx_world g, vx_wd_state st, uint mode) {
+VX_FN vx_hit vx_world_finish(VX_BLOB blob, vx_world g, vx_wd_state st, vx_ray r, uint mode) {
+    VX_UNUSED(r);
     vx_mask is_hit = st.walk.w.status == VX_STATUS_HIT;
     vx_u32 material = vx_u32_splat(0u);
     if (mode == VX_MODE_CLOSEST) material = vx_sv_material(blob, g.f, g.attribute_kind, st.walk, is_hit);
@@ -145,5 +146,5 @@ VX_FN vx_hit vx_world_trace(VX_BLOB blob, vx_ray r, uint mode) {
     vx_world g = vx_world_load(blob);
     vx_wd_state st = vx_world_begin(g, r);
     while (vx_any(st.walk.w.status == VX_STATUS_ACTIVE)) st = vx_world_step(blob, g, st);
-    return vx_world_finish(blob, g, st, mode);
+    return vx_world_finish(blob, g, st, r, mode);
 }

@@ -162,8 +162,8 @@ VOXRAY_AVX512_END
         }                                                                                                        \
         template <std::uint32_t Mode>                                                                            \
         __attribute__((always_inline)) static vx_hit finish(const std::uint32_t* b, const header& g,            \
-                                                            const state& st) {                                   \
-            return vx_##s##_finish(b, g, st, Mode);                                                              \
+                                                            const state& st, const vx_ray& r) {                  \
+            return vx_##s##_finish(b, g, st, r, Mode);                                                           \
         }                                                                                                        \
         __attribute__((always_inline)) static vx_u32 status(const state& st) { return vx_##s##_status(st); }    \
         template <std::uint32_t Mode>                                                                            \

@@ -52,6 +52,7 @@
 #include "voxray/core/ray.hpp"
 #include "voxray/embree/device.hpp"
 #include "voxray/embree/exposure.hpp"
+#include "voxray/embree/face_quads.hpp"
 #include "voxray/embree/trace.hpp"
 #include "voxray/model/voxel_model.hpp"
 
@@ -66,13 +67,7 @@ public:
     explicit quad_scene(const voxel_model& model, device dev = device()) : dev_(std::move(dev)) {
         auto start = std::chrono::steady_clock::now();
         bounds_ = model.bounds();
-        for_each_voxel_exposure(model, [&](glm::ivec3 p, std::uint8_t material, std::uint8_t exposed) {
-            for (std::uint32_t f = 0; f < 6; ++f)
-                if (exposed & (1u << f)) faces_.push_back({p, f | (std::uint32_t(material) << 8)});
-        });
-        faces_.shrink_to_fit();
-        // Vertex indices are 32-bit and each quad has 4 vertices of its own.
-        check_limit("quad_scene face count", faces_.size(), std::size_t(1) << 30);
+        faces_ = exposed_faces(model);
 
         std::size_t before = dev_.allocated_bytes();
         scene_.reset(rtcNewScene(dev_.handle()));
@@ -80,7 +75,7 @@ public:
         // CONTEXT_FILTER_FUNCTION lets a packet bring the boundary filter in its context.
         rtcSetSceneFlags(scene_.get(), RTC_SCENE_FLAG_ROBUST | RTC_SCENE_FLAG_CONTEXT_FILTER_FUNCTION);
         rtcSetSceneBuildQuality(scene_.get(), RTC_BUILD_QUALITY_HIGH);
-        if (!faces_.empty()) attach_quads();
+        if (!faces_.empty()) attach_face_quads(dev_, scene_.get(), faces_);
         rtcCommitScene(scene_.get());
         dev_.check("rtcCommitScene");
         std::size_t after = dev_.allocated_bytes();
@@ -149,50 +144,13 @@ public:
     const device& embree_device() const { return dev_; }
 
 private:
-    struct face_record {
-        glm::ivec3 voxel;
-        std::uint32_t face_material;  // bits 0..7: VX_FACE_*, bits 8..15: palette index
-    };
+    using face_record = face_quad;
 
     struct context {
         RTCIntersectContext base;  // must stay first: the filter casts the pointer back
         const face_record* faces;
         context(const face_record* f, const trace_options& opt) : faces(f) { init_context(base, opt); }
     };
-
-    void attach_quads() {
-        RTCGeometry g = rtcNewGeometry(dev_.handle(), RTC_GEOMETRY_TYPE_QUAD);
-        dev_.check("rtcNewGeometry(QUAD)");
-        auto* vertices = static_cast<float*>(rtcSetNewGeometryBuffer(
-            g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float), 4 * faces_.size()));
-        auto* indices = static_cast<unsigned*>(rtcSetNewGeometryBuffer(
-            g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT4, 4 * sizeof(unsigned), faces_.size()));
-        dev_.check("rtcSetNewGeometryBuffer");
-        for (std::size_t q = 0; q < faces_.size(); ++q) {
-            const face_record& f = faces_[q];
-            int face = int(f.face_material & 0xFFu);
-            int a = face >> 1, u = (a + 1) % 3, w = (a + 2) % 3;
-            glm::vec3 base(f.voxel);
-            if (!(face & 1)) base[a] += 1.0f;  // positive faces lie on the far plane
-            // Corners counter-clockwise seen from +a; negative faces are walked the other
-            // way so that the geometric normal points out of the voxel.
-            static constexpr int su[4] = {0, 1, 1, 0}, sw[4] = {0, 0, 1, 1};
-            for (int k = 0; k < 4; ++k) {
-                int c = (face & 1) ? 3 - k : k;
-                glm::vec3 v = base;
-                v[u] += float(su[c]);
-                v[w] += float(sw[c]);
-                float* out = vertices + 3 * (4 * q + std::size_t(k));
-                out[0] = v.x, out[1] = v.y, out[2] = v.z;
-                indices[4 * q + std::size_t(k)] = unsigned(4 * q + std::size_t(k));
-            }
-        }
-        rtcSetGeometryBuildQuality(g, RTC_BUILD_QUALITY_HIGH);
-        rtcCommitGeometry(g);
-        rtcAttachGeometry(scene_.get(), g);
-        rtcReleaseGeometry(g);
-        dev_.check("quad geometry setup");
-    }
 
     // Loads a packet; lanes starting on a boundary plane are rebased. Returns whether any
     // lane is left to trace.

@@ -1,0 +1,26 @@
+#!/usr/bin/env bash
+# Issue 26's measurements: scenes of 100, 1,000 and 10,000 moving instances (the shared deer
+# and tree models) over a 512^3 built-in terrain, benchmarked on every world kind with scenes
+# x backend (none / off-paths / in-view, and Embree's instancing peer in the same run), with
+# the per-frame update of every instance moving. Results in docs/bench/entities/, the table
+# (scripts/entity_table.py) in docs/entities.md.
+#
+#   scripts/entity_bench.sh [RUNS] [WIDTH HEIGHT]     # default 5 runs at 960 x 540
+set -euo pipefail
+source "$(dirname "${BASH_SOURCE[0]}")/setup.sh"
+install_packages
+configure_and_build voxray_tool
+
+RUNS=${1:-5} WIDTH=${2:-960} HEIGHT=${3:-540}
+cd "$ROOT"  # the results and scene files name paths relative to the repository
+OUT=docs/bench/entities
+DATA=${VOXRAY_DATA_DIR:-../shared/data}
+mkdir -p "$OUT"
+for n in 100 1000 10000; do
+    /usr/bin/python3 scripts/make_entity_scene.py "$OUT/herd_$n.json" --world builtin:terrain:512 --count "$n" \
+        --extent 512 512 131 --data "$DATA"
+    "$BUILD_DIR/voxray" bench "$OUT/herd_$n.json" --runs "$RUNS" --width "$WIDTH" --height "$HEIGHT" \
+        --out "$OUT/herd_$n.jsonl" 2>/dev/null
+done
+/usr/bin/python3 scripts/entity_table.py "$OUT"/herd_*.jsonl --out "$OUT/table.md"
+cat "$OUT/table.md"

@@ -1,0 +1,71 @@
+#!/usr/bin/env python3
+"""The entity table of docs/entities.md from `voxray bench SCENE.json` results
+(scripts/entity_bench.sh): per instance count, world kind, backend and ray set, the rates
+with no scene, with the instances off the rays' paths and in view, the overhead of entities
+off the paths against the world alone, Embree's instancing peer on the same rays, and the
+per-frame update with every instance moving.
+
+    entity_table.py docs/bench/entities/herd_*.jsonl --out docs/bench/entities/table.md
+"""
+import argparse
+import json
+
+
+def rows_of(path):
+    with open(path) as f:
+        lines = [json.loads(line) for line in f if line.strip()]
+    return [r for r in lines if r.get("type") in ("row", "update")]
+
+
+def main():
+    p = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    p.add_argument("results", nargs="+")
+    p.add_argument("--out", required=True)
+    a = p.parse_args()
+
+    rows = []
+    for path in a.results:
+        rows += rows_of(path)
+    rows.sort(key=lambda r: r["entities"] if r.get("placement") != "none" else 0)
+    counts = sorted({r["entities"] for r in rows if r["type"] == "update"})
+
+    out = ["| instances | world | backend | rays | Mrays/s alone | off paths | overhead | in view | steps/ray in view "
+           "| cycles/step | Embree instances in view | vs Embree | mismatches |",
+           "|---:|---|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|"]
+    for n in counts:
+        group = [r for r in rows if r["type"] == "row" and (r["entities"] == n or r.get("placement") == "none")
+                 and r.get("scene", "").endswith(f"_{n}.json")]
+        embree = {r["ray_set"]: r for r in group if r["structure"] == "embree-instances" and r["placement"] == "in-view"}
+        keys = sorted({(r["world"], r["backend"], r["ray_set"]) for r in group if r["structure"] != "embree-instances"})
+        for world, backend, ray_set in keys:
+            by = {r["placement"]: r for r in group if (r["world"], r["backend"], r["ray_set"]) == (world, backend, ray_set)}
+            if not all(k in by for k in ("none", "off-paths", "in-view")):
+                continue
+            alone, off, view = (by[k]["mrays_median"] for k in ("none", "off-paths", "in-view"))
+            e = embree.get(ray_set)
+            cycles = by["in-view"].get("cycles_per_ray_step")
+            mismatches = sum(by[k]["mismatches"] for k in by)
+            cycles_text = f"{cycles:.1f}" if isinstance(cycles, (int, float)) and cycles == cycles else "–"
+            if e and backend == "cpu":
+                embree_text = f"{e['mrays_median']:.2f} | {view / e['mrays_median']:.2f}x"
+            else:
+                embree_text = "– | –"
+            out.append(f"| {n:,} | {world} | {backend} | {ray_set} | {alone:.2f} | {off:.2f} | {100 * (alone / off - 1):+.1f} % "
+                       f"| {view:.2f} | {by['in-view']['steps_per_ray']:.1f} | {cycles_text} | {embree_text} | {mismatches} |")
+    out += ["", "Update per frame, every instance moving (host: scene.move of the batch + tracer.update; "
+            "Embree: rtcCommitScene of its top-level BVH after the same moves):", "",
+            "| instances | world | backend | update ms | bytes sent | Embree commit ms |", "|---:|---|---|---:|---:|---:|"]
+    for n in counts:
+        commit = [r["commit_ms"] for r in rows if r["type"] == "row" and r["structure"] == "embree-instances"
+                  and r["entities"] == n and r["placement"] == "in-view"]
+        for r in rows:
+            if r["type"] == "update" and r["entities"] == n:
+                commit_text = f"{commit[0]:.2f}" if commit else "–"
+                out.append(f"| {n:,} | {r['world']} | {r['backend']} | {r['update_ms_median']:.2f} | "
+                           f"{r['update_bytes_median']:,.0f} | {commit_text} |")
+    with open(a.out, "w") as f:
+        f.write("\n".join(out) + "\n")
+
+
+if __name__ == "__main__":
+    main()
