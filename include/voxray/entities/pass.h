@@ -12,23 +12,76 @@
  * stack holds one node a level, and the host keeps the tree within VX_SC_MAX_DEPTH levels);
  * every model walk runs to its end. Ties: the world wins over an instance at the same t, and
  * among instances the lower slot wins, so the result does not depend on the visiting order. */
+/* Per lane: whether the ray enters the box of all instances (the BVH's root) before its hit
+ * `h` (the world's). Written for every lane set: the C++ SIMD lanes run the scalar pass lane
+ * by lane only where this holds, so rays that pass no entity cost a few vector operations
+ * (the scalar pass begins with the same test). */
+VX_FN vx_mask vx_sc_enters_entities(VX_BLOB blob, vx_ray r, vx_hit h) {
+    uint root = vx_load(blob, VX_SC_HEADER_NODES);
+    float limit = vx_load(blob, VX_SC_HEADER_NODE_COUNT) != 0u ? VX_INF : -VX_INF;  /* no instances: none */
+    vx_f32 t0 = r.tmin;
+    vx_f32 t1 = vx_fmin(vx_sel(h.status == VX_STATUS_HIT, h.t, r.tmax), vx_f32_splat(limit));
+    vx_f32 o[3];
+    vx_f32 d[3];
+    o[0] = r.ox; o[1] = r.oy; o[2] = r.oz;
+    d[0] = r.dx; d[1] = r.dy; d[2] = r.dz;
+    for (uint a = 0u; a < 3u; ++a) {
+        float lo = vx_bits_f(vx_load(blob, root + VX_SC_NODE_MIN + a));
+        float hi = vx_bits_f(vx_load(blob, root + VX_SC_NODE_MAX + a));
+        vx_mask moving = vx_moves(d[a]);
+        vx_f32 inv = 1.0f / vx_sel(moving, d[a], vx_f32_splat(1.0f));
+        vx_f32 ta = (lo - o[a]) * inv;
+        vx_f32 tb = (hi - o[a]) * inv;
+        t0 = vx_sel(moving, vx_fmax(t0, vx_fmin(ta, tb)), t0);
+        vx_mask inside = o[a] >= lo && o[a] <= hi;
+        t1 = vx_sel(moving, vx_fmin(t1, vx_fmax(ta, tb)), vx_sel(inside, t1, vx_f32_splat(-VX_INF)));
+    }
+    return t0 <= t1;
+}
+
 #if !defined(VX_SIMD_WIDTH)
 
-/* Entry t of the ray into node `node`'s box, clipped to [tmin, tmax]; VX_INF when it
- * misses the box or enters after tmax. */
-VX_FN float vx_sc_box_enter(VX_BLOB blob, uint node, vx_ray r, float tmax) {
-    float lo[3];
-    float hi[3];
-    for (uint a = 0u; a < 3u; ++a) {
-        lo[a] = vx_bits_f(vx_load(blob, node + VX_SC_NODE_MIN + a));
-        hi[a] = vx_bits_f(vx_load(blob, node + VX_SC_NODE_MAX + a));
+/* What every box test of one ray needs, computed once: 1/d per axis (0 on an axis the ray
+ * does not move along, vx_moves), and the ray itself. */
+VX_STRUCT(vx_sc_box_ray)
+    vx_ray r;
+    float ix, iy, iz;
+VX_END_STRUCT(vx_sc_box_ray)
+
+VX_FN vx_sc_box_ray vx_sc_box_ray_make(vx_ray r) {
+    vx_sc_box_ray b;
+    b.r = r;
+    b.ix = vx_moves(r.dx) ? 1.0f / r.dx : 0.0f;
+    b.iy = vx_moves(r.dy) ? 1.0f / r.dy : 0.0f;
+    b.iz = vx_moves(r.dz) ? 1.0f / r.dz : 0.0f;
+    return b;
+}
+
+/* One axis: narrows [t0, t1] to where the ray lies between lo and hi; an axis the ray does not
+ * move along keeps it where the origin lies between them, else empties it. */
+VX_FN void vx_sc_slab(float o, float inv, float lo, float hi, VX_INOUT(float) t0, VX_INOUT(float) t1) {
+    if (inv == 0.0f) {
+        if (!(o >= lo && o <= hi)) VX_REF(t1) = -VX_INF;
+        return;
     }
-    vx_slab sx = vx_slab_make(r.ox - lo[0], r.dx, hi[0] - lo[0], 1.0f);
-    vx_slab sy = vx_slab_make(r.oy - lo[1], r.dy, hi[1] - lo[1], 1.0f);
-    vx_slab sz = vx_slab_make(r.oz - lo[2], r.dz, hi[2] - lo[2], 1.0f);
-    float tenter = vx_fmax(r.tmin, vx_fmax(sx.t0, vx_fmax(sy.t0, sz.t0)));
-    float texit = vx_fmin(tmax, vx_fmin(sx.t1, vx_fmin(sy.t1, sz.t1)));
-    return tenter <= texit ? tenter : VX_INF;
+    float ta = (lo - o) * inv;
+    float tb = (hi - o) * inv;
+    VX_REF(t0) = vx_fmax(VX_REF(t0), vx_fmin(ta, tb));
+    VX_REF(t1) = vx_fmin(VX_REF(t1), vx_fmax(ta, tb));
+}
+
+/* Entry t of the ray into node `node`'s box, clipped to [tmin, tmax]; VX_INF when it
+ * misses the box or enters after tmax. (Boxes carry a margin for rounding, placed_box.) */
+VX_FN float vx_sc_box_enter(VX_BLOB blob, uint node, vx_sc_box_ray b, float tmax) {
+    float t0 = b.r.tmin;
+    float t1 = tmax;
+    vx_sc_slab(b.r.ox, b.ix, vx_bits_f(vx_load(blob, node + VX_SC_NODE_MIN + 0u)),
+               vx_bits_f(vx_load(blob, node + VX_SC_NODE_MAX + 0u)), VX_ADDR(t0), VX_ADDR(t1));
+    vx_sc_slab(b.r.oy, b.iy, vx_bits_f(vx_load(blob, node + VX_SC_NODE_MIN + 1u)),
+               vx_bits_f(vx_load(blob, node + VX_SC_NODE_MAX + 1u)), VX_ADDR(t0), VX_ADDR(t1));
+    vx_sc_slab(b.r.oz, b.iz, vx_bits_f(vx_load(blob, node + VX_SC_NODE_MIN + 2u)),
+               vx_bits_f(vx_load(blob, node + VX_SC_NODE_MAX + 2u)), VX_ADDR(t0), VX_ADDR(t1));
+    return t0 <= t1 ? t0 : VX_INF;
 }
 
 /* The ray in the frame of the instance whose words start at `inst`, up to tmax. */
@@ -102,29 +155,40 @@ VX_FN vx_hit vx_entities_trace(VX_BLOB blob, vx_ray r, vx_hit best, uint mode) {
     uint items = vx_load(blob, VX_SC_HEADER_ITEMS);
     if (vx_load(blob, VX_SC_HEADER_NODE_COUNT) == 0u) return best;
     if (mode == VX_MODE_ANY && best.status == VX_STATUS_HIT) return best;
+    vx_sc_box_ray b = vx_sc_box_ray_make(r);
     uint best_slot = VX_SC_FREE_SLOT;
+    /* Nodes whose box the ray enters, with the entry t, still to visit: one a level. */
     uint pending[VX_SC_MAX_DEPTH];
+    float pending_t[VX_SC_MAX_DEPTH];
     int top = 0;
+    best.steps = best.steps + 1u;
+    float t = vx_sc_box_enter(blob, nodes, b, best.status == VX_STATUS_HIT ? best.t : r.tmax);
     uint node = 0u;
+    bool open = t != VX_INF;
     while (true) {
-        best.steps = best.steps + 1u;
-        uint at = nodes + node * VX_SC_NODE_WORDS;
-        float tmax = best.status == VX_STATUS_HIT ? best.t : r.tmax;
-        bool open = vx_sc_box_enter(blob, at, r, tmax) != VX_INF;
-        uint first = vx_load(blob, at + VX_SC_NODE_FIRST);
-        uint count = vx_load(blob, at + VX_SC_NODE_COUNT);
-        if (open && count == 0u) {
-            /* The nearer child first, so the farther one is often culled by then. */
-            uint a = nodes + first * VX_SC_NODE_WORDS;
-            float ta = vx_sc_box_enter(blob, a, r, tmax);
-            float tb = vx_sc_box_enter(blob, a + VX_SC_NODE_WORDS, r, tmax);
-            bool b_first = tb < ta;
-            pending[top] = b_first ? first : first + 1u;
-            top = top + 1;
-            node = b_first ? first + 1u : first;
-            continue;
-        }
         if (open) {
+            uint at = nodes + node * VX_SC_NODE_WORDS;
+            uint first = vx_load(blob, at + VX_SC_NODE_FIRST);
+            uint count = vx_load(blob, at + VX_SC_NODE_COUNT);
+            if (count == 0u) {
+                /* Both children's boxes, the nearer visited first and the farther kept (a miss
+                 * is dropped): by the time it is taken, the best hit may cull it. */
+                float tmax = best.status == VX_STATUS_HIT ? best.t : r.tmax;
+                float ta = vx_sc_box_enter(blob, nodes + first * VX_SC_NODE_WORDS, b, tmax);
+                float tb = vx_sc_box_enter(blob, nodes + (first + 1u) * VX_SC_NODE_WORDS, b, tmax);
+                best.steps = best.steps + 2u;
+                bool b_first = tb < ta;
+                float near_t = b_first ? tb : ta;
+                float far_t = b_first ? ta : tb;
+                if (far_t != VX_INF) {
+                    pending[top] = b_first ? first : first + 1u;
+                    pending_t[top] = far_t;
+                    top = top + 1;
+                }
+                node = b_first ? first + 1u : first;
+                open = near_t != VX_INF;
+                continue;
+            }
             for (uint k = 0u; k < count; ++k) {
                 best = vx_sc_test_instance(blob, vx_load(blob, items + first + k), r, best, VX_ADDR(best_slot), mode);
                 if (mode == VX_MODE_ANY && best.status == VX_STATUS_HIT) return best;
@@ -133,6 +197,8 @@ VX_FN vx_hit vx_entities_trace(VX_BLOB blob, vx_ray r, vx_hit best, uint mode) {
         if (top == 0) break;
         top = top - 1;
         node = pending[top];
+        /* Entered before the best hit so far (ties included: a lower slot may still win)? */
+        open = best.status != VX_STATUS_HIT || pending_t[top] <= best.t;
     }
     return best;
 }

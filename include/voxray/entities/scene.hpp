@@ -19,6 +19,7 @@
 #pragma once
 #include <algorithm>
 #include <cstdint>
+#include <deque>
 #include <mutex>
 #include <optional>
 #include <bit>
@@ -97,7 +98,7 @@ public:
             id = instance_id(slots_.size());
             slots_.push_back({});
         }
-        slots_[id] = {model, where, true};
+        slots_[id] = {model, where, true, false};
         ++live_;
         membership_changed_ = true;
         return id;
@@ -107,7 +108,7 @@ public:
         std::unique_lock lock(m_);
         check_instance(id);
         slots_[id].where = where;
-        moved_.push_back(id);
+        mark_moved(id);
     }
     // Several moves under one lock: all or none (a bad id or pose moves nothing).
     void move(std::span<const std::pair<instance_id, pose>> moves) {
@@ -117,7 +118,7 @@ public:
         for (auto& m : moves) check_instance(m.first);
         for (std::size_t i = 0; i < moves.size(); ++i) {
             slots_[moves[i].first].where = checked_places[i];
-            moved_.push_back(moves[i].first);
+            mark_moved(moves[i].first);
         }
     }
     void remove(instance_id id) {
@@ -186,7 +187,19 @@ private:
         model_id model = 0;
         pose where;
         bool live = false;
+        bool moved = false;  // listed in moved_ (once, however often it moves between commits)
     };
+
+    void mark_moved(instance_id id) {
+        if (slots_[id].moved) return;
+        slots_[id].moved = true;
+        moved_.push_back(id);
+    }
+    void clear_moved() const {
+        for (instance_id id : moved_)
+            if (id < slots_.size()) slots_[id].moved = false;
+        moved_.clear();
+    }
 
     void check_model(model_id id) const {
         if (id >= models_.size() || !model_live_[id])
@@ -210,7 +223,7 @@ private:
             log_.commit({}, true, std::uint32_t(words_.size()));
             entity_words_last_ = words_.size() - world_words_;
             relayout_ = membership_changed_ = false;
-            moved_.clear();
+            clear_moved();
             return;
         }
         std::uint64_t entity_words = 0;
@@ -222,10 +235,9 @@ private:
             ranges.push_back({nodes_, bvh_.node_count() * VX_SC_NODE_WORDS});
             ranges.push_back({items_, std::uint32_t(bvh_.items().size())});
             membership_changed_ = false;
-            moved_.clear();
+            clear_moved();
         } else if (!moved_.empty()) {
             std::sort(moved_.begin(), moved_.end());
-            moved_.erase(std::unique(moved_.begin(), moved_.end()), moved_.end());
             for (instance_id id : moved_) {
                 write_slot(id);
                 ranges.push_back({instances_ + id * VX_SC_INSTANCE_WORDS, VX_SC_INSTANCE_WORDS});
@@ -236,7 +248,7 @@ private:
                             words_.begin() + nodes_ + n * VX_SC_NODE_WORDS);
                 ranges.push_back({nodes_ + n * VX_SC_NODE_WORDS, VX_SC_NODE_WORDS});
             }
-            moved_.clear();
+            clear_moved();
         }
         for (auto& r : ranges)
             if (r.offset >= world_end()) entity_words += r.count;
@@ -346,9 +358,9 @@ private:
 
     World& world_;
     mutable std::shared_mutex m_;
-    std::vector<entity_model> models_;
+    std::deque<entity_model> models_;  // a deque: model() references stay valid as models are added
     std::vector<bool> model_live_;
-    std::vector<slot> slots_;
+    mutable std::vector<slot> slots_;  // `moved` marks are cleared by commits (under the exclusive lock)
     std::vector<instance_id> free_;
     std::size_t live_ = 0;
     std::uint64_t taken_ = 0;  // generation take_dirty_ranges handed out last

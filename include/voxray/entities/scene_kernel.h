@@ -44,12 +44,14 @@ VX_FN vx_hit VX_SC_SCENE_FN(_finish)(VX_BLOB blob, VX_SCENE_HEADER g, VX_SC_SCEN
     vx_hit h = VX_SC_WORLD_FN(_finish)(vx_blob_at(blob, VX_SC_WORLD), g, s.w, r, mode);
 #if defined(VX_DIALECT_CPP)
     /* C++ lanes: the pass is scalar code (entities/pass.h), run for each lane in turn. */
-    return vx_each_lane(VX_SC_WORLD_FN(_status)(s.w) != VX_STATUS_ACTIVE, r, h,
+    vx_mask done = VX_SC_WORLD_FN(_status)(s.w) != VX_STATUS_ACTIVE;
+    return vx_each_lane(done && vx_sc_enters_entities(blob, r, h), r, h,
                         [&](const scalar::vx_ray& lane_ray, const scalar::vx_hit& world_hit) {
                             return scalar::vx_entities_trace(blob, lane_ray, world_hit, mode);
                         });
 #else
-    return vx_entities_trace(blob, r, h, mode);
+    /* The same filter as the C++ lanes', so steps count alike on every backend. */
+    return vx_sc_enters_entities(blob, r, h) ? vx_entities_trace(blob, r, h, mode) : h;
 #endif
 }
 
