@@ -39,27 +39,31 @@ VX_FN VX_SC_SCENE_FN(_state) VX_SC_SCENE_FN(_step)(VX_BLOB blob, VX_SCENE_HEADER
 
 VX_FN vx_u32 VX_SC_SCENE_FN(_status)(VX_SC_SCENE_FN(_state) s) { return VX_SC_WORLD_FN(_status)(s.w); }
 
-/* The world's hit, then the entity pass of every lane whose world walk has ended. */
-VX_FN vx_hit VX_SC_SCENE_FN(_finish)(VX_BLOB blob, VX_SCENE_HEADER g, VX_SC_SCENE_FN(_state) s, vx_ray r, uint mode) {
-    vx_hit h = VX_SC_WORLD_FN(_finish)(vx_blob_at(blob, VX_SC_WORLD), g, s.w, r, mode);
+/* The entity pass after the world's hit h, in the lanes of `done` whose ray enters the
+ * instances' box (every backend filters alike, so steps agree). The pass is scalar code
+ * (entities/pass.h): the C++ lanes run it for each such lane in turn. */
+VX_FN vx_hit VX_SC_SCENE_FN(_entities)(VX_BLOB blob, vx_ray r, vx_hit h, vx_mask done, uint mode) {
+    vx_mask go = done && vx_sc_enters_entities(blob, r, h);
 #if defined(VX_DIALECT_CPP)
-    /* C++ lanes: the pass is scalar code (entities/pass.h), run for each lane in turn. */
-    vx_mask done = VX_SC_WORLD_FN(_status)(s.w) != VX_STATUS_ACTIVE;
-    return vx_each_lane(done && vx_sc_enters_entities(blob, r, h), r, h,
-                        [&](const scalar::vx_ray& lane_ray, const scalar::vx_hit& world_hit) {
-                            return scalar::vx_entities_trace(blob, lane_ray, world_hit, mode);
-                        });
+    return vx_each_lane(go, r, h, [&](const scalar::vx_ray& lane_ray, const scalar::vx_hit& world_hit) {
+        return scalar::vx_entities_trace(blob, lane_ray, world_hit, mode);
+    });
 #else
-    /* The same filter as the C++ lanes', so steps count alike on every backend. */
-    return vx_sc_enters_entities(blob, r, h) ? vx_entities_trace(blob, r, h, mode) : h;
+    return go ? vx_entities_trace(blob, r, h, mode) : h;
 #endif
 }
 
+/* The world's hit, then the entities, in every lane whose world walk has ended. */
+VX_FN vx_hit VX_SC_SCENE_FN(_finish)(VX_BLOB blob, VX_SCENE_HEADER g, VX_SC_SCENE_FN(_state) s, vx_ray r, uint mode) {
+    vx_hit h = VX_SC_WORLD_FN(_finish)(vx_blob_at(blob, VX_SC_WORLD), g, s.w, r, mode);
+    return VX_SC_SCENE_FN(_entities)(blob, r, h, VX_SC_WORLD_FN(_status)(s.w) != VX_STATUS_ACTIVE, mode);
+}
+
+/* One ray (GPU work-items, the C++ scalar lanes' single rays): the world's own trace on its
+ * words, found once, then the entities. */
 VX_FN vx_hit VX_SC_SCENE_FN(_trace)(VX_BLOB blob, vx_ray r, uint mode) {
-    VX_SCENE_HEADER g = VX_SC_SCENE_FN(_load)(blob);
-    VX_SC_SCENE_FN(_state) s = VX_SC_SCENE_FN(_begin)(g, r);
-    while (vx_any(VX_SC_SCENE_FN(_status)(s) == VX_STATUS_ACTIVE)) s = VX_SC_SCENE_FN(_step)(blob, g, s);
-    return VX_SC_SCENE_FN(_finish)(blob, g, s, r, mode);
+    vx_hit h = VX_SC_WORLD_FN(_trace)(vx_blob_at(blob, VX_SC_WORLD), r, mode);
+    return VX_SC_SCENE_FN(_entities)(blob, r, h, h.status != VX_STATUS_ACTIVE, mode);
 }
 
 #undef VX_SC_SCENE_FN
