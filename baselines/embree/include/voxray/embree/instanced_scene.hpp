@@ -1,8 +1,8 @@
 // Embree peer of voxray's scenes with entities (voxray/entities/): the world's exposed faces
-// as quads in the top-level scene, each entity model's exposed faces as quads in a scene of
-// its own, and every instance an RTC_GEOMETRY_TYPE_INSTANCE of its model's scene with the
-// pose's affine transform. move() sets a transform; commit() rebuilds Embree's top-level BVH
-// over the instances (the models' BVHs stay). What `voxray bench SCENE.json` measures
+// as quads in a scene of their own, each entity model's likewise, and in the top-level scene
+// the world (no transform) and every instance as RTC_GEOMETRY_TYPE_INSTANCE of its model's
+// scene with the pose's affine transform. move() sets a transform; commit() rebuilds Embree's
+// top-level BVH over the instances (the world's and the models' BVHs stay). What `voxray bench SCENE.json` measures
 // voxray's scenes against, on the same rays.
 //
 // Hits: the world's like quad_scene's; an instance's with its voxel and face in the model's
@@ -40,10 +40,25 @@ public:
     explicit instanced_scene(const voxel_model& world, device dev = device()) : dev_(std::move(dev)) {
         world_faces_ = exposed_faces(world);
         bounds_ = world.bounds();
+        // The world's quads in a scene of their own, instanced once with no transform: a
+        // frame's commit then rebuilds only the top level over the instances.
+        world_.reset(rtcNewScene(dev_.handle()));
+        rtcSetSceneFlags(world_.get(), RTC_SCENE_FLAG_ROBUST);
+        rtcSetSceneBuildQuality(world_.get(), RTC_BUILD_QUALITY_HIGH);
+        if (!world_faces_.empty()) attach_face_quads(dev_, world_.get(), world_faces_);
+        rtcCommitScene(world_.get());
         top_.reset(rtcNewScene(dev_.handle()));
         dev_.check("rtcNewScene");
         rtcSetSceneFlags(top_.get(), RTC_SCENE_FLAG_ROBUST);
-        if (!world_faces_.empty()) attach_face_quads(dev_, top_.get(), world_faces_);  // instID: invalid
+        RTCGeometry g = rtcNewGeometry(dev_.handle(), RTC_GEOMETRY_TYPE_INSTANCE);
+        rtcSetGeometryInstancedScene(g, world_.get());
+        rtcSetGeometryTimeStepCount(g, 1);
+        const float identity[12] = {1, 0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0};
+        rtcSetGeometryTransform(g, 0, RTC_FORMAT_FLOAT3X4_COLUMN_MAJOR, identity);
+        rtcCommitGeometry(g);
+        world_geometry_ = rtcAttachGeometry(top_.get(), g);
+        rtcReleaseGeometry(g);
+        dev_.check("world instance");
     }
 
     std::uint32_t add_model(const voxel_model& m) {
@@ -153,7 +168,7 @@ private:
                     continue;
                 }
                 unsigned inst = pk.rayhit.hit.instID[0][i];
-                std::uint32_t id = inst == RTC_INVALID_GEOMETRY_ID ? none : instance_of_geometry_[inst];
+                std::uint32_t id = inst == world_geometry_ ? none : instance_of_geometry_[inst];
                 const face_quad& f = id == none ? world_faces_[pk.rayhit.hit.primID[i]]
                                                 : models_[instances_[id].model].faces[pk.rayhit.hit.primID[i]];
                 h.t = pk.t(i);
@@ -166,7 +181,8 @@ private:
     }
 
     device dev_;
-    scene_handle top_;
+    scene_handle world_, top_;
+    unsigned world_geometry_ = 0;  // the world's instance in the top-level scene
     std::vector<face_quad> world_faces_;
     box3i bounds_;
     std::vector<model_entry> models_;
