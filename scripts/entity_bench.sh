@@ -15,11 +15,12 @@ RUNS=${1:-5} WIDTH=${2:-960} HEIGHT=${3:-540}
 cd "$ROOT"  # the results and scene files name paths relative to the repository
 OUT=docs/bench/entities
 DATA=${VOXRAY_DATA_DIR:-../shared/data}
+VOXRAY=$(realpath --relative-to="$ROOT" "$BUILD_DIR")/voxray  # results record the command: no machine paths
 mkdir -p "$OUT"
 for n in 100 1000 10000; do
     /usr/bin/python3 scripts/make_entity_scene.py "$OUT/herd_$n.json" --world builtin:terrain:512 --count "$n" \
         --extent 512 512 131 --data "$DATA"
-    "$BUILD_DIR/voxray" bench "$OUT/herd_$n.json" --runs "$RUNS" --width "$WIDTH" --height "$HEIGHT" \
+    "$VOXRAY" bench "$OUT/herd_$n.json" --runs "$RUNS" --width "$WIDTH" --height "$HEIGHT" \
         --out "$OUT/herd_$n.jsonl" 2>/dev/null
 done
 /usr/bin/python3 scripts/entity_table.py "$OUT"/herd_*.jsonl --out "$OUT/table.md"
