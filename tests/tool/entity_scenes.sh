@@ -34,6 +34,8 @@ expect_failure unknown_model 'instances\[0\].model: no model named "deer"' \
     "$tool" check "$(bad bad_model "{\"world\": \"builtin:sphere30\", $model, \"instances\": [{\"model\": \"deer\", \"position\": [0, 0, 0]}]}")"
 expect_failure short_position 'instances\[0\].position: expected 3 numbers' \
     "$tool" render "$(bad bad_position "{\"world\": \"builtin:sphere30\", $model, \"instances\": [{\"model\": \"m\", \"position\": [0, 0]}]}")" --out "$work/x.png"
+expect_failure huge_position 'instances\[0\].position: a number is not a finite float \(1e\+300\)' \
+    "$tool" check "$(bad huge_position "{\"world\": \"builtin:sphere30\", $model, \"instances\": [{\"model\": \"m\", \"position\": [1e300, 0, 0]}]}")"
 expect_failure unknown_motion 'instances\[0\].motion.wobble: unknown motion' \
     "$tool" check "$(bad bad_motion "{\"world\": \"builtin:sphere30\", $model, \"instances\": [{\"model\": \"m\", \"position\": [0, 0, 0], \"motion\": {\"wobble\": 1}}]}")"
 expect_failure no_world 'no_world.json: world: missing, or not a string' \

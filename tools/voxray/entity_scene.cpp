@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdio>
 #include <fstream>
+#include <limits>
 #include <memory>
 
 #include <glm/gtc/quaternion.hpp>
@@ -35,9 +36,10 @@ std::vector<float> scene_numbers(const scene_description& d, const json& v, cons
     std::vector<float> out;
     for (auto& x : v) {
         if (!x.is_number()) scene_file_error(d, key, "expected " + std::to_string(count) + " numbers");
-        float f = x.get<float>();
-        if (!std::isfinite(f)) scene_file_error(d, key, "a number is not finite");
-        out.push_back(f);
+        double v = x.get<double>();
+        if (!(std::abs(v) <= double(std::numeric_limits<float>::max())))
+            scene_file_error(d, key, "a number is not a finite float (" + x.dump() + ")");
+        out.push_back(float(v));
     }
     return out;
 }
