@@ -280,22 +280,19 @@ private:
         }
     }
 
-    std::span<const std::uint32_t> world_blob() const {
+    // A new layout over the world's words as they are (a consistent frame where the world
+    // is edited from other threads: held while they are copied).
+    void lay_out() const {
         if constexpr (requires(const World& w) { w.snapshot().blob; }) {
             auto frame = world_.snapshot();
             world_generation_ = frame.generation;
-            return copy_of(frame.blob);
+            lay_out(frame.blob);
         } else {
-            return world_.blob();
+            lay_out(world_.blob());
         }
     }
-    std::span<const std::uint32_t> copy_of(std::span<const std::uint32_t> words) const {
-        world_copy_.assign(words.begin(), words.end());
-        return world_copy_;
-    }
 
-    void lay_out() const {
-        std::span<const std::uint32_t> world = world_blob();
+    void lay_out(std::span<const std::uint32_t> world) const {
         world_words_ = std::uint32_t(world.size());
         std::uint64_t at = VX_SC_WORLD + world.size();
         model_offset_.assign(models_.size(), VX_SC_FREE_SLOT);
@@ -320,8 +317,6 @@ private:
         words_[VX_SC_HEADER_NODES] = nodes_;
         words_[VX_SC_HEADER_ITEMS] = items_;
         std::copy(world.begin(), world.end(), words_.begin() + VX_SC_WORLD);
-        world_copy_.clear();
-        world_copy_.shrink_to_fit();
         for (std::size_t m = 0; m < models_.size(); ++m)
             if (model_live_[m]) std::copy(models_[m].words().begin(), models_[m].words().end(), words_.begin() + model_offset_[m]);
         for (std::uint32_t s = 0; s < capacity_; ++s) write_slot(s);
@@ -369,7 +364,6 @@ private:
     mutable std::vector<instance_id> moved_;
     mutable bool relayout_ = true, membership_changed_ = false;
     mutable blob_words words_;
-    mutable std::vector<std::uint32_t> world_copy_;
     mutable std::vector<std::uint32_t> model_offset_;
     mutable std::vector<world_box> boxes_;
     mutable instance_bvh bvh_;
