@@ -108,8 +108,13 @@ endfunction()
 # Scenes over one world kind (include/voxray/entities/): the world's kernel and the entity
 # pass as one more kernel, scene_<world>, from entities/worlds/<world>.h and .hpp. Not a
 # structure of the type list: a scene is built from a world and instances, not a model.
+# TYPE: the world type the tests and the tool run scenes over (default voxray::<world>).
 function(voxray_add_scene world)
-    set_property(GLOBAL APPEND PROPERTY VOXRAY_SCENE_WORLD_TYPES "voxray::${world}")
+    cmake_parse_arguments(arg "" "TYPE" "" ${ARGN})
+    if(NOT arg_TYPE)
+        set(arg_TYPE "voxray::${world}")
+    endif()
+    set_property(GLOBAL APPEND PROPERTY VOXRAY_SCENE_WORLD_TYPES "${arg_TYPE}")
     voxray_add_kernel(scene_${world} KERNEL entities/worlds/${world}.h HEADER voxray/entities/worlds/${world}.hpp)
 endfunction()
 

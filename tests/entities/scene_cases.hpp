@@ -1,6 +1,6 @@
 // Scenes for the entity tests: real worlds and models from ../shared/data where present
 // (procedural stand-ins otherwise), random poses with rotations of every kind, and
-// the comparison against the brute-force reference (support/scene_reference.hpp).
+// the comparison against the brute-force reference (voxray/entities/reference.hpp).
 #pragma once
 #include <cmath>
 #include <string>
@@ -12,9 +12,9 @@
 #include "random_models.hpp"
 #include "special_rays.hpp"
 #include "test_data.hpp"
-#include "voxray/entities/worlds/dense_grid.hpp"
-#include "voxray/entities/worlds/naadf.hpp"
+#include "voxray/core/type_list.hpp"
 #include "voxray/entities/reference.hpp"
+#include "voxray/generated/structures.hpp"
 #include "voxray/io/vox_reader.hpp"
 #include "voxray/rays/sampling.hpp"
 #include "voxray/scenes/builtin.hpp"
@@ -97,26 +97,38 @@ struct scene_check {
     std::string first;
 };
 
-// Closest and any hits of the tracer against the reference: geometry, face, material and
-// status for closest hits (steps are the structure's own), status for any hits.
+// The reference's closest hits for `rays`.
+inline std::vector<hit> reference_hits(scene_reference& ref, std::span<const ray> rays) {
+    std::vector<hit> want(rays.size());
+    for (std::size_t i = 0; i < rays.size(); ++i) want[i] = ref.trace(rays[i], VX_MODE_CLOSEST);
+    return want;
+}
+
+// Closest and any hits of the tracer against the reference's closest hits `want`: geometry,
+// face, material and status for closest hits (steps are the structure's own), status for
+// any hits.
 template <class Tracer>
-scene_check check_against(Tracer& t, scene_reference& ref, std::span<const ray> rays) {
+scene_check check_against(Tracer& t, std::span<const hit> want, std::span<const ray> rays) {
     scene_check c;
     c.rays = rays.size();
     std::vector<hit> got(rays.size()), any(rays.size());
     t.closest_hit(rays, got);
     t.any_hit(rays, any);
     for (std::size_t i = 0; i < rays.size(); ++i) {
-        hit want = ref.trace(rays[i], VX_MODE_CLOSEST);
-        hit g = got[i];
-        g.steps = want.steps = 0;
-        if (hit_instance(want)) ++c.entity_hits;
-        bool ok = same_bits(g, want) && any[i].status == want.status;
+        hit w = want[i], g = got[i];
+        g.steps = w.steps = 0;
+        if (hit_instance(w)) ++c.entity_hits;
+        bool ok = same_bits(g, w) && any[i].status == w.status;
         if (!ok && c.mismatches++ == 0)
-            c.first = describe(rays[i]) + "\n  got  " + describe(got[i]) + "\n  want " + describe(want) +
+            c.first = describe(rays[i]) + "\n  got  " + describe(got[i]) + "\n  want " + describe(want[i]) +
                       "\n  any-hit status " + std::to_string(any[i].status);
     }
     return c;
+}
+
+template <class Tracer>
+scene_check check_against(Tracer& t, scene_reference& ref, std::span<const ray> rays) {
+    return check_against(t, std::span<const hit>(reference_hits(ref, rays)), rays);
 }
 
 }  // namespace voxray::test

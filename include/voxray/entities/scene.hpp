@@ -41,8 +41,9 @@
 
 namespace voxray {
 
-// The scene kernel of each world kind: specialized by entities/worlds/<world>.hpp.
-template <class World>
+// The scene kernel over the worlds a world kernel traces (every brickmap<P, E> the brickmap
+// kernel, svdag_colours the svdag one): specialized by entities/worlds/<world>.hpp.
+template <class WorldKernel>
 struct scene_kernel_of;
 
 using model_id = std::uint32_t;
@@ -52,7 +53,7 @@ template <class World>
 class scene {
 public:
     using world_type = World;
-    using kernel = typename scene_kernel_of<World>::type;
+    using kernel = typename scene_kernel_of<typename World::kernel>::type;
     static constexpr std::string_view name = kernel::name;
 
     explicit scene(World& world) : world_(world) {}

@@ -1,5 +1,6 @@
-// Scenes over dense_grid worlds: scene<dense_grid> (entities/scene.hpp) and its kernel
-// (entities/worlds/dense_grid.h), registered by voxray_add_scene(dense_grid) in CMakeLists.txt.
+// Scenes over dense_grid worlds: scene<W> (entities/scene.hpp) for every W traced by the dense_grid
+// kernel, and its scene kernel (entities/worlds/dense_grid.h), registered by voxray_add_scene(dense_grid)
+// in CMakeLists.txt.
 #pragma once
 #include "voxray/dense_grid/dense_grid.hpp"
 #include "voxray/entities/scene.hpp"
@@ -12,7 +13,7 @@
 namespace voxray {
 
 template <>
-struct scene_kernel_of<dense_grid> {
+struct scene_kernel_of<kernels::dense_grid_kernel> {
     using type = kernels::scene_dense_grid_kernel;
 };
 

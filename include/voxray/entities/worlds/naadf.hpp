@@ -1,5 +1,6 @@
-// Scenes over naadf worlds: scene<naadf> (entities/scene.hpp) and its kernel
-// (entities/worlds/naadf.h), registered by voxray_add_scene(naadf) in CMakeLists.txt.
+// Scenes over naadf worlds: scene<W> (entities/scene.hpp) for every W traced by the naadf
+// kernel, and its scene kernel (entities/worlds/naadf.h), registered by voxray_add_scene(naadf)
+// in CMakeLists.txt.
 #pragma once
 #include "voxray/naadf/naadf.hpp"
 #include "voxray/entities/scene.hpp"
@@ -12,7 +13,7 @@
 namespace voxray {
 
 template <>
-struct scene_kernel_of<naadf> {
+struct scene_kernel_of<kernels::naadf_kernel> {
     using type = kernels::scene_naadf_kernel;
 };
 
