@@ -6,9 +6,11 @@
 // moved ones and names the nodes it changed (their words are all a device must be sent).
 #pragma once
 #include <algorithm>
+#include <functional>
 #include <bit>
 #include <cstdint>
 #include <numeric>
+#include <span>
 #include <vector>
 
 #include "voxray/core/error.hpp"
@@ -37,26 +39,33 @@ public:
     }
 
     // New boxes for the instances in `moved`: each leaf above one and every node above
-    // such a leaf gets the union of its children again. Returns the nodes that changed.
-    std::vector<std::uint32_t> refit(const std::vector<std::uint32_t>& moved, const std::vector<world_box>& boxes) {
-        std::vector<std::uint32_t> changed;
-        std::vector<std::uint32_t> level;
-        for (std::uint32_t slot : moved)
-            if (slot < leaf_of_.size() && leaf_of_[slot] != none) level.push_back(leaf_of_[slot]);
-        while (!level.empty()) {
-            std::sort(level.begin(), level.end());
-            level.erase(std::unique(level.begin(), level.end()), level.end());
-            std::vector<std::uint32_t> above;
-            for (std::uint32_t n : level) {
-                world_box b = node_is_leaf(n) ? leaf_box(n, boxes) : union_of(child_box(n, 0), child_box(n, 1));
-                if (set_box(n, b)) {
-                    changed.push_back(n);
-                    if (parent_[n] != none) above.push_back(parent_[n]);
-                }
+    // such a leaf gets the union of its children again. Returns the nodes whose box
+    // changed, in increasing order. Children are numbered after their parents (split
+    // adds them so), so a pass over the marked nodes from the highest number down sees
+    // every child before its parent; with many marks it is one sweep over all nodes.
+    std::vector<std::uint32_t> refit(std::span<const std::uint32_t> moved, const std::vector<world_box>& boxes) {
+        dirty_.assign(node_count(), 0u);
+        std::vector<std::uint32_t> marked;
+        for (std::uint32_t slot : moved) {
+            std::uint32_t n = slot < leaf_of_.size() ? leaf_of_[slot] : none;
+            for (; n != none && !dirty_[n]; n = parent_[n]) {
+                dirty_[n] = 1u;
+                marked.push_back(n);
             }
-            level = std::move(above);
         }
-        std::sort(changed.begin(), changed.end());
+        std::vector<std::uint32_t> changed;
+        auto refit_node = [&](std::uint32_t n) {
+            world_box b = node_is_leaf(n) ? leaf_box(n, boxes) : union_of(child_box(n, 0), child_box(n, 1));
+            if (set_box(n, b)) changed.push_back(n);
+        };
+        if (marked.size() * 16 > node_count()) {
+            for (std::uint32_t n = node_count(); n-- > 0;)
+                if (dirty_[n]) refit_node(n);
+        } else {
+            std::sort(marked.begin(), marked.end(), std::greater<>());
+            for (std::uint32_t n : marked) refit_node(n);
+        }
+        std::reverse(changed.begin(), changed.end());
         return changed;
     }
 
@@ -146,6 +155,7 @@ private:
     std::vector<std::uint32_t> parent_;    // per node; none for the root
     std::vector<std::uint32_t> items_;     // instance slots, grouped by leaf
     std::vector<std::uint32_t> leaf_of_;   // per slot: its leaf, or none
+    std::vector<std::uint8_t> dirty_;      // refit's marks, per node (kept to spare allocations)
 };
 
 }  // namespace voxray
