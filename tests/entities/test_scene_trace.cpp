@@ -49,11 +49,11 @@ void check_scene(World& world, const voxel_model& world_model, int count, std::s
 // Every registered world kind (registered::scene_worlds) under the same instances and rays.
 TYPED_TEST(scene_on, matches_the_reference_from_1_to_10000_instances) {
     voxel_model world_model = test_world();
-    for (auto [count, rays] : {std::pair{1, 3000}, std::pair{100, 3000}, std::pair{10000, 400}}) {
-        std::vector<hit> want;
+    for (std::pair<int, int> c : {std::pair{1, 3000}, std::pair{100, 3000}, std::pair{10000, 400}}) {
+        std::vector<hit> want;  // (a pair, not a structured binding: clang 14 cannot capture those)
         for_each_type(registered::scene_worlds{}, [&]<class World>() {
             World world(world_model);
-            check_scene<TypeParam>(world, world_model, count, std::size_t(rays), 7 + count, want);
+            check_scene<TypeParam>(world, world_model, c.first, std::size_t(c.second), 7 + std::uint64_t(c.first), want);
         });
     }
 }
