@@ -115,19 +115,27 @@ function(voxray_add_scene world)
         set(arg_TYPE "voxray::${world}")
     endif()
     set_property(GLOBAL APPEND PROPERTY VOXRAY_SCENE_WORLD_TYPES "${arg_TYPE}")
-    voxray_add_kernel(scene_${world} KERNEL entities/worlds/${world}.h HEADER voxray/entities/worlds/${world}.hpp)
+    voxray_add_kernel(scene_${world} KERNEL entities/worlds/${world}.h HEADER voxray/entities/worlds/${world}.hpp STAGED)
 endfunction()
 
-# voxray_add_kernel(<name> KERNEL <file> HEADER <file> [PASSES <file>...]): the GPU programs
-# of one kernel, vx_<name>_trace in KERNEL (under include/voxray/), whose host header HEADER
-# (under include/) declares its tag (kernels/kernel_tag.inc) and compiles its CPU lanes.
+# voxray_add_kernel(<name> KERNEL <file> HEADER <file> [PASSES <file>...] [STAGED]): the GPU
+# programs of one kernel, vx_<name>_trace in KERNEL (under include/voxray/), whose host
+# header HEADER (under include/) declares its tag (kernels/kernel_tag.inc) and compiles its
+# CPU lanes. STAGED: the kernel also has vx_<name>_first and vx_<name>_then (its trace is
+# then(first)), which OpenCL runs as two kernels (docs/design.md, "Staged kernels"); its
+# program table says so (VOXRAY_KERNEL_STAGED_<name>).
 function(voxray_add_kernel name)
-    cmake_parse_arguments(arg "" "KERNEL;HEADER" "PASSES" ${ARGN})
+    cmake_parse_arguments(arg "STAGED" "KERNEL;HEADER" "PASSES" ${ARGN})
     set_property(GLOBAL APPEND PROPERTY VOXRAY_STRUCTURES ${name})
     set_property(GLOBAL PROPERTY VOXRAY_KERNEL_HEADER_${name} ${arg_HEADER})
+    set_property(GLOBAL PROPERTY VOXRAY_KERNEL_STAGED_${name} ${arg_STAGED})
     voxray_kernel_files(kernel_files ${arg_KERNEL})
     set(pass_files "")
-    set(entry_lines "VX_OPENCL_ENTRY(${name})\n")
+    if(arg_STAGED)
+        set(entry_lines "VX_OPENCL_STAGED_ENTRY(${name})\n")
+    else()
+        set(entry_lines "VX_OPENCL_ENTRY(${name})\n")
+    endif()
     foreach(f ${arg_PASSES})
         list(APPEND pass_files ${PROJECT_SOURCE_DIR}/include/voxray/${f})
     endforeach()

@@ -50,7 +50,12 @@ function(voxray_opencl_finish)
     set(rows "")
     foreach(name ${ARGN})
         string(APPEND includes "#include \"voxray/generated/opencl_${name}.hpp\"\n")
-        string(APPEND rows "    {\"${name}\", voxray_opencl_${name}},\n")
+        get_property(staged GLOBAL PROPERTY VOXRAY_KERNEL_STAGED_${name})
+        if(staged)
+            string(APPEND rows "    {\"${name}\", voxray_opencl_${name}, true},\n")
+        else()
+            string(APPEND rows "    {\"${name}\", voxray_opencl_${name}},\n")
+        endif()
     endforeach()
     file(CONFIGURE OUTPUT ${VOXRAY_GENERATED}/voxray/generated/opencl_programs.hpp CONTENT
 "// Generated from the voxray_add_structure calls (backends/opencl/backend.cmake): do not edit.

@@ -17,9 +17,11 @@
 
 #include "hit_bits.hpp"
 #include "random_models.hpp"
+#include "scene_instances.hpp"
 #include "voxray/brickmap/brickmap.hpp"
 #include "voxray/check/ray_sets.hpp"
 #include "voxray/cpu.hpp"
+#include "voxray/entities/worlds/naadf.hpp"
 #include "voxray/naadf/naadf.hpp"
 #include "voxray/opencl.hpp"
 
@@ -257,6 +259,25 @@ TEST(OpenclInterop, BadInputIsNamed) {
     for (cl_mem b : {small, big, foreign}) clReleaseMemObject(b);
     clReleaseCommandQueue(other_queue);
     clReleaseContext(other);
+}
+
+// A scene traces in two kernels (docs/design.md, "Staged kernels"): the second reads the
+// hits the first wrote in the application's buffer.
+TEST(OpenclInterop, SceneInAppBuffers) {
+    auto m = test::offset_random_scene();
+    naadf world(m);
+    scene<naadf> s(world);
+    test::add_test_instances(s, m.bounds(), 60);
+    traces_in_app_buffers(s, m.bounds());
+    // A hits buffer kernels may not read cannot take the second stage: refused, named.
+    tracer<opencl, scene<naadf>> t(s, app().options());
+    cl_int status = CL_SUCCESS;
+    cl_mem rays = app().buffer(1024);
+    cl_mem write_only = clCreateBuffer(app().context, CL_MEM_WRITE_ONLY, 1024, nullptr, &status);
+    ok(status, "clCreateBuffer");
+    std::string e = error_of([&] { t.closest_hit(rays, write_only, 4); });
+    EXPECT_NE(e.find("the hits buffer is CL_MEM_WRITE_ONLY, but scene_naadf traces in two stages"), std::string::npos) << e;
+    for (cl_mem b : {rays, write_only}) clReleaseMemObject(b);
 }
 
 }  // namespace

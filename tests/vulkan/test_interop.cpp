@@ -13,9 +13,11 @@
 
 #include "hit_bits.hpp"
 #include "random_models.hpp"
+#include "scene_instances.hpp"
 #include "voxray/brickmap/brickmap.hpp"
 #include "voxray/check/ray_sets.hpp"
 #include "voxray/cpu.hpp"
+#include "voxray/entities/worlds/naadf.hpp"
 #include "voxray/naadf/naadf.hpp"
 #include "voxray/vulkan.hpp"
 
@@ -267,6 +269,14 @@ void traces_in_app_buffers(const Structure& s, const box3i& bounds) {
 
 TEST(VulkanInterop, BrickmapInAppBuffers) { auto m = test::offset_random_scene(); traces_in_app_buffers(brickmap<>(m), m.bounds()); }
 TEST(VulkanInterop, NaadfInAppBuffers) { auto m = test::offset_random_scene(); traces_in_app_buffers(naadf(m), m.bounds()); }
+// A scene (world and entities) on the application's buffers.
+TEST(VulkanInterop, SceneInAppBuffers) {
+    auto m = test::offset_random_scene();
+    naadf world(m);
+    scene<naadf> s(world);
+    test::add_test_instances(s, m.bounds(), 60);
+    traces_in_app_buffers(s, m.bounds());
+}
 
 // Several tracers made and destroyed on one device, the last still tracing after the
 // others are gone: nothing of theirs took the device with it.

@@ -4,7 +4,8 @@
  *   VX_SCENE_WORLD   the world kernel's name (naadf: its functions are vx_naadf_*),
  *   VX_SCENE_HEADER  the type its _load returns,  VX_SCENE_STATE  the type its _begin returns,
  * (a world kernel's _finish takes the ray its walk began with, as every kernel's does),
- * and gets vx_scene_<world>_load, _begin, _step, _status, _finish and _trace.
+ * and gets vx_scene_<world>_load, _begin, _step, _status, _finish and _trace, and the trace in
+ * two stages, _first and _then (OpenCL: two kernels, docs/design.md "Staged kernels").
  * No include guard: once per world kind and lane set (see kernels/kernel_tag.inc). */
 #if !defined(VX_SCENE_WORLD) || !defined(VX_SCENE_HEADER) || !defined(VX_SCENE_STATE)
 #error "define VX_SCENE_WORLD, VX_SCENE_HEADER and VX_SCENE_STATE before including entities/scene_kernel.h"
@@ -59,11 +60,21 @@ VX_FN vx_hit VX_SC_SCENE_FN(_finish)(VX_BLOB blob, VX_SCENE_HEADER g, VX_SC_SCEN
     return VX_SC_SCENE_FN(_entities)(blob, r, h, VX_SC_WORLD_FN(_status)(s.w) != VX_STATUS_ACTIVE, mode);
 }
 
-/* One ray (GPU work-items, the C++ scalar lanes' single rays): the world's own trace on its
- * words, found once, then the entities. */
-VX_FN vx_hit VX_SC_SCENE_FN(_trace)(VX_BLOB blob, vx_ray r, uint mode) {
-    vx_hit h = VX_SC_WORLD_FN(_trace)(vx_blob_at(blob, VX_SC_WORLD), r, mode);
+/* The two stages of one ray's trace, which the OpenCL backend runs as two kernels (the
+ * kernel is registered STAGED): the world's own trace on its words, then the entities on
+ * its hit. Apart, the world's walk compiles as it does alone: the entity pass's code in
+ * the same kernel slowed PoCL's world walk even for rays that never ran it. */
+VX_FN vx_hit VX_SC_SCENE_FN(_first)(VX_BLOB blob, vx_ray r, uint mode) {
+    return VX_SC_WORLD_FN(_trace)(vx_blob_at(blob, VX_SC_WORLD), r, mode);
+}
+
+VX_FN vx_hit VX_SC_SCENE_FN(_then)(VX_BLOB blob, vx_ray r, vx_hit h, uint mode) {
     return VX_SC_SCENE_FN(_entities)(blob, r, h, h.status != VX_STATUS_ACTIVE, mode);
+}
+
+/* One ray (Vulkan invocations, the C++ scalar lanes' single rays): both stages in turn. */
+VX_FN vx_hit VX_SC_SCENE_FN(_trace)(VX_BLOB blob, vx_ray r, uint mode) {
+    return VX_SC_SCENE_FN(_then)(blob, r, VX_SC_SCENE_FN(_first)(blob, r, mode), mode);
 }
 
 #undef VX_SC_SCENE_FN

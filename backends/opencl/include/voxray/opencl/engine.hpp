@@ -74,12 +74,19 @@ public:
         cl_program program = ctx_->program(program_);
         closest_ = create_kernel(program, std::string("vx_closest_") + Kernel::name);
         any_ = create_kernel(program, std::string("vx_any_") + Kernel::name);
-        // Both kernels come from one source; the smaller limit serves both.
-        local_size_ =
-            std::min(group_size_for(closest_.get(), ctx_->device()), group_size_for(any_.get(), ctx_->device()));
+        if (program_.staged) {
+            closest_then_ = create_kernel(program, std::string("vx_closest_") + Kernel::name + "_then");
+            any_then_ = create_kernel(program, std::string("vx_any_") + Kernel::name + "_then");
+        }
+        // The kernels come from one source; the smallest limit serves them all.
+        local_size_ = std::numeric_limits<std::size_t>::max();
+        std::size_t most = std::numeric_limits<std::size_t>::max();
+        for (cl_kernel k : {closest_.get(), any_.get(), closest_then_.get(), any_then_.get()})
+            if (k) {
+                local_size_ = std::min(local_size_, group_size_for(k, ctx_->device()));
+                most = std::min(most, kernel_group_limit(k, ctx_->device()));
+            }
         if (std::size_t asked = requested_group_size(options.group_size)) {
-            std::size_t most = std::min(kernel_group_limit(closest_.get(), ctx_->device()),
-                                        kernel_group_limit(any_.get(), ctx_->device()));
             if (asked > most)
                 fail("OpenCL: a work-group size of ", asked, " was asked for, but the trace kernels of ", Kernel::name,
                      " allow at most ", most, " on '", ctx_->device_name(), "' (CL_KERNEL_WORK_GROUP_SIZE)");
@@ -177,12 +184,13 @@ public:
             check(clEnqueueWriteBuffer(queue_.get(), rays_.get(), CL_TRUE, 0, std::size_t(count) * VX_RAY_BYTES,
                                        rays.data() + first, 0, nullptr, nullptr),
                   "clEnqueueWriteBuffer", "sending rays");
-            event_handle done;
-            enqueue_trace(rays_.get(), hits_.get(), count, mode, profiling_ ? &done : nullptr);
+            event_handle done[2];
+            enqueue_trace(rays_.get(), hits_.get(), count, mode, profiling_ ? done : nullptr);
             check(clEnqueueReadBuffer(queue_.get(), hits_.get(), CL_TRUE, 0, std::size_t(count) * VX_HIT_BYTES,
                                       hits.data() + first, 0, nullptr, nullptr),
                   "clEnqueueReadBuffer", "reading hits");
-            if (done) kernel_seconds_ += event_seconds(done.get());  // complete: the read came after it
+            for (auto& d : done)  // complete: the read came after them
+                if (d) kernel_seconds_ += event_seconds(d.get());
         }
     }
 
@@ -197,6 +205,7 @@ public:
         if (!uploaded_) fail("OpenCL: trace before any structure was uploaded");
         check_user_buffer(rays, count, ctx_->context(), "rays");
         check_user_buffer(hits, count, ctx_->context(), "hits");
+        if (program_.staged) check_readable_hits(hits, Kernel::name);
         if (count > std::numeric_limits<cl_uint>::max() - local_size_)
             fail("OpenCL: ", count, " rays in one trace, more than the kernel's 32-bit count allows; split them");
         if (count > 0) enqueue_trace(rays, hits, cl_uint(count), mode);
@@ -224,11 +233,18 @@ public:
     std::size_t work_group_size() const { return local_size_; }
 
 private:
-    // Kernel arguments are captured at enqueue time, so the kernel object is free for the
-    // next call at once.
+    // The trace kernel of `mode`, then, for a staged kernel, its second stage on the same
+    // hits (the in-order queue runs it after the first). `done`: an event per kernel.
+    // Kernel arguments are captured at enqueue time, so the kernel objects are free for
+    // the next call at once.
     void enqueue_trace(cl_mem in, cl_mem out, cl_uint count, std::uint32_t mode, event_handle* done = nullptr) {
+        bool any = mode == VX_MODE_ANY;
+        enqueue_kernel(any ? any_.get() : closest_.get(), in, out, count, done);
+        if (program_.staged)
+            enqueue_kernel(any ? any_then_.get() : closest_then_.get(), in, out, count, done ? done + 1 : nullptr);
+    }
+    void enqueue_kernel(cl_kernel kernel, cl_mem in, cl_mem out, cl_uint count, event_handle* done) {
         cl_mem blob = blob_.get();
-        cl_kernel kernel = mode == VX_MODE_ANY ? any_.get() : closest_.get();
         check(clSetKernelArg(kernel, 0, sizeof blob, &blob), "clSetKernelArg", "setting the blob");
         check(clSetKernelArg(kernel, 1, sizeof in, &in), "clSetKernelArg", "setting the rays");
         check(clSetKernelArg(kernel, 2, sizeof out, &out), "clSetKernelArg", "setting the hits");
@@ -255,11 +271,12 @@ private:
     std::shared_ptr<device_context> ctx_;
     queue_handle queue_;
     kernel_handle closest_, any_;
+    kernel_handle closest_then_, any_then_;  // a staged kernel's second stage (entry.cl)
     committer committer_;
     // Read-write: the commit kernel writes it; the trace kernels only read it.
     device_buffer blob_{CL_MEM_READ_WRITE, "the structure blob"};
     device_buffer rays_{CL_MEM_READ_ONLY, "rays"};
-    device_buffer hits_{CL_MEM_WRITE_ONLY, "hits"};
+    device_buffer hits_{CL_MEM_READ_WRITE, "hits"};  // a staged kernel's second stage reads them
     pass_runner passes_;
     std::size_t local_size_ = 1;
     bool uploaded_ = false;

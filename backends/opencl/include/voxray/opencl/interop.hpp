@@ -11,11 +11,13 @@
 //     and traces rely on its ordering;
 //   - ray and hit buffers (cl_mem) belong to `context` and hold at least `count` records.
 //     For an offset into a larger buffer, pass a sub-buffer (clCreateSubBuffer; its origin
-//     must be a multiple of CL_DEVICE_MEM_BASE_ADDR_ALIGN).
+//     must be a multiple of CL_DEVICE_MEM_BASE_ADDR_ALIGN);
+//   - for scenes (staged kernels: two kernels, the second reads the first's hits) the hits
+//     buffer is not CL_MEM_WRITE_ONLY.
 //
 // Synchronisation: tracer::closest_hit / any_hit(cl_mem rays, cl_mem hits, count) enqueue
-// the trace kernel on `queue` and return at once. The queue's order does the rest: commands
-// enqueued before it (writing the rays) finish first, commands enqueued after it (reading
+// the trace kernel (a scene's two) on `queue` and return at once. The queue's order does the
+// rest: commands enqueued before it (writing the rays) finish first, commands enqueued after it (reading
 // the hits: clEnqueueReadBuffer, the application's kernels) see the hits. Work on other
 // queues must wait on that queue (clFinish, or an event of a later marker). update() and the
 // host-array trace block until done, as without interop.
@@ -27,6 +29,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <string_view>
 
 #include "voxray/core/ray_hit_layout.h"
 #include "voxray/opencl/error.hpp"
@@ -55,6 +58,17 @@ inline void check_user_buffer(cl_mem mem, std::size_t count, cl_context context,
     std::uint64_t bytes = std::uint64_t(count) * VX_RAY_BYTES;
     if (bytes > size)
         fail("OpenCL: ", count, " ", what, " need ", bytes, " bytes, but the ", what, " buffer holds ", size);
+}
+
+// A staged kernel's second stage reads the hits its first wrote: the hits buffer must be
+// readable by kernels.
+inline void check_readable_hits(cl_mem hits, std::string_view kernel) {
+    cl_mem_flags flags = 0;
+    check(clGetMemObjectInfo(hits, CL_MEM_FLAGS, sizeof flags, &flags, nullptr), "clGetMemObjectInfo",
+          "inspecting the hits buffer");
+    if (flags & CL_MEM_WRITE_ONLY)
+        fail("OpenCL: the hits buffer is CL_MEM_WRITE_ONLY, but ", kernel,
+             " traces in two stages and the second reads the first's hits: create it CL_MEM_READ_WRITE");
 }
 
 }  // namespace opencl_detail

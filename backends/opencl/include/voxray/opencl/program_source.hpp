@@ -9,6 +9,9 @@ namespace voxray::opencl_detail {
 struct program_source {
     std::string_view name;
     const char* source;
+    // Staged (voxray_add_kernel ... STAGED): vx_closest_<name>_then and vx_any_<name>_then
+    // run after the trace kernels, on their hits (entry.cl).
+    bool staged = false;
 };
 
 }  // namespace voxray::opencl_detail
