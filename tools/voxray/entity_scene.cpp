@@ -36,10 +36,10 @@ std::vector<float> scene_numbers(const scene_description& d, const json& v, cons
     std::vector<float> out;
     for (auto& x : v) {
         if (!x.is_number()) scene_file_error(d, key, "expected " + std::to_string(count) + " numbers");
-        double v = x.get<double>();
-        if (!(std::abs(v) <= double(std::numeric_limits<float>::max())))
+        double number = x.get<double>();
+        if (!(std::abs(number) <= double(std::numeric_limits<float>::max())))
             scene_file_error(d, key, "a number is not a finite float (" + x.dump() + ")");
-        out.push_back(float(v));
+        out.push_back(float(number));
     }
     return out;
 }

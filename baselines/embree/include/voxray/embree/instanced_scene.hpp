@@ -2,8 +2,8 @@
 // as quads in a scene of their own, each entity model's likewise, and in the top-level scene
 // the world (no transform) and every instance as RTC_GEOMETRY_TYPE_INSTANCE of its model's
 // scene with the pose's affine transform. move() sets a transform; commit() rebuilds Embree's
-// top-level BVH over the instances (the world's and the models' BVHs stay). What `voxray bench SCENE.json` measures
-// voxray's scenes against, on the same rays.
+// top-level BVH over the instances (the world's and the models' BVHs stay). What
+// `voxray bench SCENE.json` measures voxray's scenes against, on the same rays.
 //
 // Hits: the world's like quad_scene's; an instance's with its voxel and face in the model's
 // own coordinates and the instance in the material's upper bits, as voxray's scenes report
