@@ -3,7 +3,8 @@
 (scripts/entity_bench.sh): per instance count, world kind, backend and ray set, the rates
 with no scene, with the instances off the rays' paths and in view, the overhead of entities
 off the paths against the world alone, Embree's instancing peer on the same rays, and the
-per-frame update with every instance moving.
+per-frame update with every instance moving; candidates found by the BVH (the default).
+Then the BVH against the chunk lists (the other way to find candidates) on the same rays.
 
     entity_table.py docs/bench/entities/herd_*.jsonl --out docs/bench/entities/table.md
 """
@@ -14,7 +15,38 @@ import json
 def rows_of(path):
     with open(path) as f:
         lines = [json.loads(line) for line in f if line.strip()]
-    return [r for r in lines if r.get("type") in ("row", "update")]
+    rows = [r for r in lines if r.get("type") in ("row", "update")]
+    for r in rows:  # results from before the chunk lists: the BVH
+        r.setdefault("candidates", "-" if r.get("placement") == "none" else "bvh")
+    return rows
+
+
+def candidates_table(rows, counts):
+    """The BVH against the chunk lists: rates off the paths and in view, steps in view."""
+    out = ["", "Finding candidate instances: the BVH against the chunk lists (same rays, same run; ratio > 1: the "
+           "chunk lists are faster):", "",
+           "| instances | world | backend | rays | off paths BVH | chunk lists | ratio | in view BVH | chunk lists "
+           "| ratio | steps/ray BVH | chunk lists |",
+           "|---:|---|---|---|---:|---:|---:|---:|---:|---:|---:|---:|"]
+    found = False
+    for n in counts:
+        scene_rows = [r for r in rows if r["type"] == "row" and r["entities"] == n and r["placement"] != "none"]
+        keys = sorted({(r["world"], r["backend"], r["ray_set"]) for r in scene_rows if r["candidates"] == "chunk-lists"})
+        for world, backend, ray_set in keys:
+            by = {(r["candidates"], r["placement"]): r for r in scene_rows
+                  if (r["world"], r["backend"], r["ray_set"]) == (world, backend, ray_set)}
+            need = [(c, p) for c in ("bvh", "chunk-lists") for p in ("off-paths", "in-view")]
+            if not all(k in by for k in need):
+                continue
+            found = True
+            rate = {k: by[k]["mrays_median"] for k in need}
+            out.append(f"| {n:,} | {world} | {backend} | {ray_set} "
+                       f"| {rate['bvh', 'off-paths']:.2f} | {rate['chunk-lists', 'off-paths']:.2f} "
+                       f"| {rate['chunk-lists', 'off-paths'] / rate['bvh', 'off-paths']:.2f}x "
+                       f"| {rate['bvh', 'in-view']:.2f} | {rate['chunk-lists', 'in-view']:.2f} "
+                       f"| {rate['chunk-lists', 'in-view'] / rate['bvh', 'in-view']:.2f}x "
+                       f"| {by['bvh', 'in-view']['steps_per_ray']:.1f} | {by['chunk-lists', 'in-view']['steps_per_ray']:.1f} |")
+    return out if found else []
 
 
 def main():
@@ -34,7 +66,7 @@ def main():
            "|---:|---|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|"]
     for n in counts:
         group = [r for r in rows if r["type"] == "row" and (r["entities"] == n or r.get("placement") == "none")
-                 and r.get("scene", "").endswith(f"_{n}.json")]
+                 and r.get("scene", "").endswith(f"_{n}.json") and r["candidates"] in ("-", "bvh", "embree")]
         embree = {r["ray_set"]: r for r in group if r["structure"] == "embree-instances" and r["placement"] == "in-view"}
         keys = sorted({(r["world"], r["backend"], r["ray_set"]) for r in group if r["structure"] != "embree-instances"})
         for world, backend, ray_set in keys:
@@ -58,12 +90,13 @@ def main():
         disagree = sum(r.get("status_disagreements", 0) for r in peer)
         out += ["", f"Embree's instancing peer (float quads, compared by hit status only): {disagree:,} of {rays:,} "
                 f"timed rays disagree with voxray's hits."]
+    out += candidates_table(rows, counts)
     out += ["", "Update per frame, every instance moving (host: scene.move of the batch + tracer.update):", "",
-            "| instances | world | backend | update ms | bytes sent |", "|---:|---|---|---:|---:|"]
+            "| instances | world | backend | candidates | update ms | bytes sent |", "|---:|---|---|---|---:|---:|"]
     for n in counts:
         for r in rows:
             if r["type"] == "update" and r["entities"] == n:
-                out.append(f"| {n:,} | {r['world']} | {r['backend']} | {r['update_ms_median']:.2f} | "
+                out.append(f"| {n:,} | {r['world']} | {r['backend']} | {r['candidates']} | {r['update_ms_median']:.2f} | "
                            f"{r['update_bytes_median']:,.0f} |")
     with open(a.out, "w") as f:
         f.write("\n".join(out) + "\n")

@@ -1,7 +1,7 @@
 // Moves, adds and removes from several threads while tracers of two backends update and
-// trace, and while the world itself is edited and saved (run under ThreadSanitizer by
-// scripts/test.sh): no race, and once the threads are done every backend matches the
-// reference for the scene as it ended.
+// trace (candidates by the BVH, then by chunk lists), and while the world itself is edited
+// and saved (run under ThreadSanitizer by scripts/test.sh): no race, and once the threads
+// are done every backend matches the reference for the scene as it ended.
 #include <gtest/gtest.h>
 
 #include <thread>
@@ -53,6 +53,8 @@ TEST(scene_threads, moves_from_several_threads_while_tracers_update) {
     auto rays = scene_rays(s, b, 500, 8);
     std::vector<hit> hits(rays.size());
     for (int frame = 0; frame < 20; ++frame) {
+        // Halfway, candidates by chunk lists (rebuilt at each commit from then on).
+        if (frame == 10) s.set_candidates(entity_candidates::chunk_lists);
         simd.update(s);
         simd.closest_hit(rays, hits);
         scalar.update(s);

@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Scene files (docs/entities.md) through the tool: `check SCENE.json --frames` on every world
-# kind x backend ends in "0 mismatches"; `render --frames` writes one image a frame; bad
-# scene files fail naming the file and the key.
+# kind x backend x way of finding candidates ends in "0 mismatches"; `render --frames`
+# writes one image a frame; bad scene files fail naming the file and the key.
 # Usage: entity_scenes.sh TOOL DATA_DIR WORK_DIR
 set -euo pipefail
 tool=$1 data=$2 work=$3
@@ -14,7 +14,8 @@ python3 "$here/../../scripts/make_entity_scene.py" "$work/herd.json" --world bui
 out=$("$tool" check "$work/herd.json" --frames 4 --rays 4000 2>/dev/null) || { echo "FAIL check: exit $?"; echo "$out"; failures=$((failures + 1)); }
 echo "$out" | tail -n 10
 last=$(tail -n 1 <<< "$out")
-if [[ $last == "0 mismatches" ]] && grep -qE "^naadf +vulkan +[1-9][0-9]* +0$" <<< "$out"; then echo "ok   check: $last"
+if [[ $last == "0 mismatches" ]] && grep -qE "^naadf +vulkan +bvh +[1-9][0-9]* +0$" <<< "$out" &&
+   grep -qE "^naadf +vulkan +chunk-lists +[1-9][0-9]* +0$" <<< "$out"; then echo "ok   check: $last"
 else echo "FAIL check: last line '$last'"; failures=$((failures + 1)); fi
 
 "$tool" render "$work/herd.json" --frames 2 --structure naadf --backend cpu --width 160 --height 90 \

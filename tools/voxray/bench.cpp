@@ -313,6 +313,9 @@ command add_bench(CLI::App& parent) {
     app->add_option("--edits", o->edits, "measure editing instead: spheres (50 balls a frame) or voxel")
         ->check(CLI::IsMember({"spheres", "voxel"}));
     app->add_option("--threads", o->threads, "threads that apply edits")->check(CLI::Range(1u, 256u))->capture_default_str();
+    o->candidates = all_candidates();
+    app->add_option("--candidates", o->candidates, "a scene file's ways to find candidate entities, each measured")
+        ->check(names_from(candidates_names(), "way"))->capture_default_str();
     return {app, [o, app] {
         if (!o->scene.scenes.empty() && is_scene_description(o->scene.scenes[0])) return bench_scene_file(*o);
         if (o->edits.empty()) return run_matrix(*o);

@@ -10,6 +10,7 @@ struct bench_options {
     scene_options scene;
     std::string structures, backends, ray_sets;  // comma-separated
     std::string out, ray_file, write_rays, edits;
+    std::string candidates;  // a scene file's ways to find candidate entities, comma-separated
     int width = 1920, height = 1080, runs = 5, warmup = 1;
     unsigned threads = 2;
 };

@@ -26,7 +26,7 @@ struct check_options {
     std::uint64_t seed = 1;
     int edits = 0, frames = 1;
     bool rays_given = false;
-    std::string structures = exact_structure_names(), backends, json;
+    std::string structures = exact_structure_names(), backends, json, candidates = all_candidates();
     bool mesh = false;
     mesh_check_options mesh_options;
 };
@@ -68,8 +68,13 @@ int check_scene(const check_options& o) {
     for (auto& w : scene_world_names())
         for (auto& s : split_names(o.structures))
             if (s == w) worlds += (worlds.empty() ? "" : ",") + w;
-    if (worlds.empty()) fail("--structures ", o.structures, ": none has scenes with entities (those that do: dense, naadf)");
-    return check_scene_file(o.scene.scenes[0], o.scene, o.frames, o.rays_given ? o.rays : 20000, o.seed, worlds, o.backends);
+    if (worlds.empty()) {
+        std::string with;
+        for (auto& w : scene_world_names()) with += (with.empty() ? "" : ", ") + w;
+        fail("--structures ", o.structures, ": none has scenes with entities (those that do: ", with, ")");
+    }
+    return check_scene_file(o.scene.scenes[0], o.scene, o.frames, o.rays_given ? o.rays : 20000, o.seed, worlds, o.backends,
+                            o.candidates);
 }
 
 int check(const check_options& o) {
@@ -168,6 +173,8 @@ command add_check(CLI::App& parent) {
     app->add_option("--edits", o->edits, "random region edits applied before tracing")
         ->check(CLI::Range(0, 100000))->capture_default_str();
     app->add_option("--json", o->json, "also write the per-pair counts to this JSON file");
+    app->add_option("--candidates", o->candidates, "a scene file's ways to find candidate entities, each checked")
+        ->check(names_from(candidates_names(), "way"))->capture_default_str();
     app->add_flag("--mesh", o->mesh, "check the scene's chunk meshes instead: face sets, POP order, cracks");
     app->add_option("--mesh-views", o->mesh_options.views, "random views of the mesh crack tests")
         ->check(CLI::Range(1, 10000000))->capture_default_str();

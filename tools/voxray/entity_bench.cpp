@@ -4,11 +4,13 @@
 //   off-paths  every instance moved behind the camera, where no primary ray goes: the cost
 //              of entities a ray does not meet (the BVH's root box test);
 //   in-view    the scene at frame 0, as the file places it;
-// plus Embree's instancing peer (embree-instances: world quads, a quad scene per model,
-// instances by transform) on the CPU in the same run, and per world kind x backend one
-// "update" row: --runs frames of the file's motion, every instance moving, the host seconds
-// of scene.move + tracer.update and the bytes sent. Rows are JSON lines after a header
-// (--out), like the matrix's, with `entities` and `placement` in each.
+// the scene rows once per way of finding candidate instances (--candidates: the BVH, the
+// chunk lists), plus Embree's instancing peer (embree-instances: world quads, a quad scene
+// per model, instances by transform) on the CPU in the same run, and per world kind x
+// backend x way one "update" row: --runs frames of the file's motion, every instance
+// moving, the host seconds of scene.move + tracer.update and the bytes sent. Rows are JSON
+// lines after a header (--out), like the matrix's, with `entities`, `placement` and
+// `candidates` in each.
 //
 // Validation: every timed run's hits are compared with the brute-force reference
 // (entities/reference.hpp) where rays x instances stay below 4e8 (it walks every instance
@@ -118,21 +120,23 @@ int bench_scene_file(const bench_options& o) {
         out.emplace(o.out, "--out");
         out->stream() << results_header(own_command_line(), 1).dump() << "\n";
     }
-    std::printf("%-8s %-17s %-11s %-7s %-9s %9s %9s %9s %9s %10s\n", "world", "structure", "backend", "rays", "placement",
-                "Mrays/s", "steps/ray", "cyc/step", "inst.hits", "mismatches");
+    std::printf("%-8s %-17s %-11s %-11s %-7s %-9s %9s %9s %9s %9s %10s\n", "world", "structure", "backend", "candidates",
+                "rays", "placement", "Mrays/s", "steps/ray", "cyc/step", "inst.hits", "mismatches");
     int failed = 0;
     auto emit = [&](json row) {
         if (row.contains("mrays_median"))
-            std::printf("%-8s %-17s %-11s %-7s %-9s %9.2f %9.2f %9.1f %9llu %10llu\n", row["world"].get<std::string>().c_str(),
-                        row["structure"].get<std::string>().c_str(), row["backend"].get<std::string>().c_str(),
+            std::printf("%-8s %-17s %-11s %-11s %-7s %-9s %9.2f %9.2f %9.1f %9llu %10llu\n",
+                        row["world"].get<std::string>().c_str(), row["structure"].get<std::string>().c_str(),
+                        row["backend"].get<std::string>().c_str(), row["candidates"].get<std::string>().c_str(),
                         row["ray_set"].get<std::string>().c_str(), row["placement"].get<std::string>().c_str(),
                         row["mrays_median"].get<double>(), row["steps_per_ray"].get<double>(),
                         row["cycles_per_ray_step"].is_number() ? row["cycles_per_ray_step"].get<double>() : 0.0,
                         (unsigned long long)row["instance_hits"].get<std::uint64_t>(),
                         (unsigned long long)row.value("mismatches", std::uint64_t(0)));
         else
-            std::printf("%-8s update on %-11s %zu instances moving: %.3f ms a frame (median of %d), %.0f bytes sent\n",
-                        row["world"].get<std::string>().c_str(), row["backend"].get<std::string>().c_str(), count,
+            std::printf("%-8s update on %-11s (%s) %zu instances moving: %.3f ms a frame (median of %d), %.0f bytes sent\n",
+                        row["world"].get<std::string>().c_str(), row["backend"].get<std::string>().c_str(),
+                        row["candidates"].get<std::string>().c_str(), count,
                         row["update_ms_median"].get<double>(), o.runs, row["update_bytes_median"].get<double>());
         std::fflush(stdout);
         failed += row.value("mismatches", std::uint64_t(0)) > 0;
@@ -184,10 +188,12 @@ int bench_scene_file(const bench_options& o) {
             for (auto& set : sets) {
                 std::vector<hit> hits(set.rays->size());
                 std::uint64_t mismatches = 0;
-                auto measure = [&](const char* placement, const std::vector<hit>& want, auto&& trace) {
+                auto measure = [&](const char* placement, const std::string& candidates, const std::vector<hit>& want,
+                                   auto&& trace) {
                     json row = base;
                     row.update({{"world", w}, {"structure", "scene-" + w}, {"backend", b}, {"device", run->device()},
-                                {"ray_set", set.name}, {"placement", placement}, {"validated_by", brute ? "reference" : "cpu-scalar"}});
+                                {"ray_set", set.name}, {"placement", placement}, {"candidates", candidates},
+                                {"validated_by", brute ? "reference" : "cpu-scalar"}});
                     if (std::string(placement) == "none") row["structure"] = w, row["entities"] = 0;
                     mismatches = 0;
                     row.update(time_runs(o, hits.size(), [&] {
@@ -199,31 +205,36 @@ int bench_scene_file(const bench_options& o) {
                     row["mismatches"] = mismatches;
                     emit(row);
                 };
-                measure("none", set.world_alone, [&] {
+                measure("none", "-", set.world_alone, [&] {
                     if (set.any) run->world_any_hit(*set.rays, hits);
                     else run->world_closest_hit(*set.rays, hits);
                 });
-                run->move_all(off);
-                measure("off-paths", set.off_paths, [&] {
+                auto trace_scene = [&] {
                     if (set.any) run->any_hit(*set.rays, hits);
                     else run->closest_hit(*set.rays, hits);
-                });
+                };
+                for (auto& c : split_names(o.candidates)) {
+                    run->set_candidates(candidates_named(c));
+                    run->move_all(off);
+                    measure("off-paths", c, set.off_paths, trace_scene);
+                    run->go_to(0);
+                    measure("in-view", c, set.in_view, trace_scene);
+                }
+            }
+            for (auto& c : split_names(o.candidates)) {
+                run->set_candidates(candidates_named(c));
                 run->go_to(0);
-                measure("in-view", set.in_view, [&] {
-                    if (set.any) run->any_hit(*set.rays, hits);
-                    else run->closest_hit(*set.rays, hits);
-                });
+                std::vector<double> ms, bytes;
+                for (int f = 1; f <= o.runs; ++f) {
+                    run->go_to(f);
+                    ms.push_back(run->seconds_last_update() * 1e3);
+                    bytes.push_back(double(run->bytes_last_update()));
+                }
+                json row = base;
+                row.update({{"type", "update"}, {"world", w}, {"backend", b}, {"candidates", c}, {"moved", count},
+                            {"update_ms_median", median(ms)}, {"update_ms_runs", ms}, {"update_bytes_median", median(bytes)}});
+                emit(row);
             }
-            std::vector<double> ms, bytes;
-            for (int f = 1; f <= o.runs; ++f) {
-                run->go_to(f);
-                ms.push_back(run->seconds_last_update() * 1e3);
-                bytes.push_back(double(run->bytes_last_update()));
-            }
-            json row = base;
-            row.update({{"type", "update"}, {"world", w}, {"backend", b}, {"moved", count}, {"update_ms_median", median(ms)},
-                        {"update_ms_runs", ms}, {"update_bytes_median", median(bytes)}});
-            emit(row);
         }
 
 #if VOXRAY_WITH_EMBREE
@@ -247,7 +258,7 @@ int bench_scene_file(const bench_options& o) {
                     std::uint64_t disagreements = 0;
                     json row = base;
                     row.update({{"world", "-"}, {"structure", "embree-instances"}, {"backend", "cpu"}, {"device", "embree"},
-                                {"ray_set", set.name}, {"placement", placement}});
+                                {"ray_set", set.name}, {"placement", placement}, {"candidates", "embree"}});
                     row.update(time_runs(o, hits.size(), [&] {
                         if (set.any) peer.any_hit(*set.rays, hits, opt);
                         else peer.closest_hit(*set.rays, hits, opt);

@@ -120,6 +120,10 @@ public:
         tracer_->update(scene_);
         seconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     }
+    void set_candidates(entity_candidates how) override {
+        scene_.set_candidates(how);
+        tracer_->update(scene_);
+    }
     void world_closest_hit(std::span<const ray> rays, std::span<hit> hits) override { world_tracer_.closest_hit(rays, hits); }
     void world_any_hit(std::span<const ray> rays, std::span<hit> hits) override { world_tracer_.any_hit(rays, hits); }
     unsigned cpu_threads() const override {
@@ -246,22 +250,36 @@ std::vector<std::string> scene_world_names() {
     return names;
 }
 
+std::vector<std::string> candidates_names() {
+    std::vector<std::string> names;
+    for (entity_candidates c : every_entity_candidates) names.emplace_back(candidates_name(c));
+    return names;
+}
+
+std::string all_candidates() {
+    std::string all;
+    for (auto& n : candidates_names()) all += (all.empty() ? "" : ",") + n;
+    return all;
+}
+
 int check_scene_file(const std::string& spec, const scene_options& o, int frames, std::size_t ray_count, std::uint64_t seed,
-                     const std::string& worlds, const std::string& backends) {
+                     const std::string& worlds, const std::string& backends, const std::string& candidates) {
     loaded_scene s = load_scene_description(spec, o);
     std::printf("%zu instances of %zu models over %s, %d frames, %zu rays a frame\n", s.description.instances.size(),
                 s.models.size(), scene_label(s.description.world).c_str(), frames, ray_count);
     struct pair {
-        std::string world, backend;
+        std::string world, backend, candidates;
         std::unique_ptr<entity_run> run;
         std::uint64_t instance_hits = 0, mismatches = 0;
     };
     std::vector<pair> pairs;
     for (auto& w : split_names(worlds))
-        for (auto& b : split_names(backends)) {
-            std::fprintf(stderr, "building the scene over %s on %s ...\n", w.c_str(), b.c_str());
-            pairs.push_back({w, b, make_entity_run(w, b, s)});
-        }
+        for (auto& b : split_names(backends))
+            for (auto& c : split_names(candidates)) {
+                std::fprintf(stderr, "building the scene over %s on %s (%s) ...\n", w.c_str(), b.c_str(), c.c_str());
+                pairs.push_back({w, b, c, make_entity_run(w, b, s)});
+                pairs.back().run->set_candidates(candidates_named(c));
+            }
     // Every pair stands at the same frame; the rays and the reference are the frame's, once.
     for (int f = 0; f < frames; ++f) {
         for (auto& p : pairs) p.run->go_to(f);
@@ -276,19 +294,19 @@ int check_scene_file(const std::string& spec, const scene_options& o, int frames
                 p.instance_hits += hit_instance(want[i]) ? 1 : 0;
                 if (same_scene_hit(closest[i], want[i]) && any[i].status == want[i].status) continue;
                 if (p.mismatches++ < 3)
-                    std::printf("  mismatch, %s on %s, frame %d ray %zu: o (%.9g %.9g %.9g) d (%.9g %.9g %.9g): got t=%.9g "
-                                "material=%u, want t=%.9g material=%u\n",
-                                p.world.c_str(), p.backend.c_str(), f, i, rays[i].origin.x, rays[i].origin.y, rays[i].origin.z,
+                    std::printf("  mismatch, %s on %s (%s), frame %d ray %zu: o (%.9g %.9g %.9g) d (%.9g %.9g %.9g): got "
+                                "t=%.9g material=%u, want t=%.9g material=%u\n",
+                                p.world.c_str(), p.backend.c_str(), p.candidates.c_str(), f, i, rays[i].origin.x, rays[i].origin.y, rays[i].origin.z,
                                 rays[i].direction.x, rays[i].direction.y, rays[i].direction.z, closest[i].t, closest[i].material,
                                 want[i].t, want[i].material);
             }
         }
     }
-    std::printf("%-8s %-11s %12s %12s\n", "world", "backend", "instance hits", "mismatches");
+    std::printf("%-8s %-11s %-11s %12s %12s\n", "world", "backend", "candidates", "instance hits", "mismatches");
     std::uint64_t mismatches = 0;
     for (auto& p : pairs) {
-        std::printf("%-8s %-11s %12llu %12llu\n", p.world.c_str(), p.backend.c_str(), (unsigned long long)p.instance_hits,
-                    (unsigned long long)p.mismatches);
+        std::printf("%-8s %-11s %-11s %12llu %12llu\n", p.world.c_str(), p.backend.c_str(), p.candidates.c_str(),
+                    (unsigned long long)p.instance_hits, (unsigned long long)p.mismatches);
         mismatches += p.mismatches;
     }
     std::printf("%llu mismatches\n", (unsigned long long)mismatches);

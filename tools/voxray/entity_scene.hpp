@@ -22,6 +22,7 @@
 #include "scene.hpp"
 #include "voxray/core/hit.hpp"
 #include "voxray/core/ray.hpp"
+#include "voxray/entities/candidates.hpp"
 #include "voxray/entities/pose.hpp"
 #include "voxray/model/voxel_model.hpp"
 
@@ -66,6 +67,10 @@ loaded_scene load_scene_description(const std::string& spec, const scene_options
 
 // The world kinds scenes run over (registered::scene_worlds), by name.
 std::vector<std::string> scene_world_names();
+// The ways to find candidate instances (every_entity_candidates), by name, and all of them
+// comma-separated (the default of --candidates).
+std::vector<std::string> candidates_names();
+std::string all_candidates();
 
 // A loaded scene built over one world kind and traced on one backend.
 class entity_run {
@@ -75,6 +80,8 @@ public:
     virtual void go_to(int frame) = 0;
     // Moves instance i to pose_of(i) for every instance, and brings the tracer up to date.
     virtual void move_all(const std::function<pose(std::uint32_t)>& pose_of) = 0;
+    // How the scene finds candidate instances (a new layout, sent whole).
+    virtual void set_candidates(entity_candidates how) = 0;
     virtual void closest_hit(std::span<const ray> rays, std::span<hit> hits) = 0;
     virtual void any_hit(std::span<const ray> rays, std::span<hit> hits) = 0;
     // The world alone, without the scene (its own tracer on this backend).
@@ -91,7 +98,7 @@ public:
 std::unique_ptr<entity_run> make_entity_run(const std::string& world, const std::string& backend, const loaded_scene& s);
 
 int check_scene_file(const std::string& spec, const scene_options& o, int frames, std::size_t rays, std::uint64_t seed,
-                     const std::string& worlds, const std::string& backends);
+                     const std::string& worlds, const std::string& backends, const std::string& candidates);
 struct bench_options;
 // `voxray bench SCENE.json` (entity_bench.cpp).
 int bench_scene_file(const bench_options& o);

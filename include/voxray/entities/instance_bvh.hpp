@@ -23,14 +23,17 @@ class instance_bvh {
 public:
     static constexpr std::uint32_t leaf_size = 4;
 
-    // Builds the tree over `slots` (instance slot numbers) whose boxes are boxes[slot].
-    void build(std::vector<std::uint32_t> slots, const std::vector<world_box>& boxes) {
+    // Builds the tree over `slots` (instance slot numbers) whose boxes are boxes[slot], with
+    // up to `most_per_leaf` instances a leaf (everything in the root: only its box is read).
+    void build(std::vector<std::uint32_t> slots, const std::vector<world_box>& boxes,
+               std::uint32_t most_per_leaf = leaf_size) {
+        most_per_leaf_ = most_per_leaf;
         nodes_.clear();
         parent_.clear();
         items_ = std::move(slots);
         leaf_of_.assign(boxes.size(), none);
         if (items_.empty()) return;
-        nodes_.reserve(2 * items_.size() / leaf_size * VX_SC_NODE_WORDS + VX_SC_NODE_WORDS);
+        nodes_.reserve(2 * items_.size() / most_per_leaf_ * VX_SC_NODE_WORDS + VX_SC_NODE_WORDS);
         add_node(none);
         std::uint32_t depth = split(0, 0, std::uint32_t(items_.size()), boxes, 1);
         if (depth > VX_SC_MAX_DEPTH)
@@ -128,7 +131,7 @@ private:
             hi = glm::max(hi, c);
         }
         set_box(n, all);
-        if (end - begin <= leaf_size) {
+        if (end - begin <= most_per_leaf_) {
             nodes_[n * VX_SC_NODE_WORDS + VX_SC_NODE_FIRST] = begin;
             nodes_[n * VX_SC_NODE_WORDS + VX_SC_NODE_COUNT] = end - begin;
             for (std::uint32_t k = begin; k < end; ++k) leaf_of_[items_[k]] = n;
@@ -156,6 +159,7 @@ private:
     std::vector<std::uint32_t> items_;     // instance slots, grouped by leaf
     std::vector<std::uint32_t> leaf_of_;   // per slot: its leaf, or none
     std::vector<std::uint8_t> dirty_;      // refit's marks, per node (kept to spare allocations)
+    std::uint32_t most_per_leaf_ = leaf_size;
 };
 
 }  // namespace voxray

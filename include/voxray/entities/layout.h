@@ -6,7 +6,8 @@
  *  scene blob
  *  +----------------------------+ word 0
  *  | header (16 words)          |  magic 'VXSC', version, world words, instance table,
- *  |                            |  slots, BVH nodes, node count, leaf items, item count
+ *  |                            |  slots, BVH nodes, node count, leaf items, item count,
+ *  |                            |  chunk lists (0: none)
  *  +----------------------------+ VX_SC_WORLD (16: 64-byte aligned)
  *  | the world's own blob       |  unchanged: its kernel walks it at this offset
  *  +----------------------------+
@@ -18,6 +19,9 @@
  *  | BVH nodes                  |  VX_SC_NODE_WORDS each, node 0 the root
  *  +----------------------------+ header.items
  *  | leaf items                 |  instance slot numbers, grouped by leaf
+ *  +----------------------------+ header.chunks (where the scene keeps chunk lists)
+ *  | chunk lists                |  a word per 16^3 chunk naming the list of instances in it
+ *  |                            |  (then the BVH is one leaf: the kernels read its box)
  *  +----------------------------+
  *
  *  instance slot (16 words)                 BVH node (8 words)
@@ -35,6 +39,19 @@
  *  6      offset of the occupancy bits     (words from the model record's start, so a
  *  7      offset of the material bytes      record reads the same wherever it lies)
  *
+ *  chunk lists (offsets in words from the section's start; chunk (x, y, z) of the grid is
+ *  word chunks + x + nx * (y + ny * z))
+ *  0..2  grid min corner x, y, z (int, world voxels, multiples of VX_SC_CHUNK_EDGE)
+ *  3..5  grid size nx, ny, nz in chunks
+ *  6     `chunks`: offset of the chunk words
+ *  7     0
+ *  8..   per instance slot, its world box: min x, y, z, max x, y, z (float, as a BVH
+ *        node's first 6 words; the slots the scene has room for)
+ *  chunks..  a word per chunk: 0 where no instance box reaches it, else the offset of its
+ *        list
+ *  ...   lists: count, then that many instance slots, increasing; chunks with the same
+ *        instances share one list
+ *
  * A point w of the world lies at model point  M * (w - P) + C  (VX_SC_TO_MODEL): the same
  * float operations, in the same order, on the host's reference and in every kernel, so
  * every backend walks the same model ray. Affine, so t is the same in both frames.
@@ -43,7 +60,7 @@
 #define VOXRAY_LAYOUT_ENTITIES_LAYOUT_H
 
 #define VX_SC_MAGIC 0x43535856u /* "VXSC" little endian */
-#define VX_SC_VERSION 1u
+#define VX_SC_VERSION 2u
 
 #define VX_SC_HEADER_MAGIC 0
 #define VX_SC_HEADER_VERSION 1
@@ -54,6 +71,8 @@
 #define VX_SC_HEADER_NODE_COUNT 6
 #define VX_SC_HEADER_ITEMS 7
 #define VX_SC_HEADER_ITEM_COUNT 8
+/* Offset of the chunk lists; 0 where the scene finds candidates by the BVH alone. */
+#define VX_SC_HEADER_CHUNKS 9
 #define VX_SC_HEADER_WORDS 16
 #define VX_SC_WORLD VX_SC_HEADER_WORDS
 
@@ -72,6 +91,14 @@
 /* The deepest BVH the host builds (it splits by count, so depth ~ log2 of the instances):
  * the kernel's stack of nodes still to visit holds one sibling per level. */
 #define VX_SC_MAX_DEPTH 32
+
+#define VX_SC_CHUNK_MIN 0
+#define VX_SC_CHUNK_SIZE 3
+#define VX_SC_CHUNK_WORDS 6
+#define VX_SC_CHUNK_BOXES 8
+#define VX_SC_CHUNK_BOX_WORDS 6
+/* Chunk edge in voxels: the paper's 16, and the largest cell vx_dda_begin_scaled takes. */
+#define VX_SC_CHUNK_EDGE 16
 
 #define VX_EM_HEADER_WORDS 16
 #define VX_EM_EXTENT 0

@@ -1,6 +1,7 @@
 /* The entity pass of a scene (entities/layout.h): after the world's walk has found its hit
- * (or none), the instances whose boxes the ray meets before it are tested, nearest box
- * first, each by an exact walk of its model in the model's own frame. Shared by every
+ * (or none), the instances whose boxes the ray meets before it are tested, each by an exact
+ * walk of its model in the model's own frame. They are found by the BVH (nearest box first)
+ * or, where the scene keeps them, by the chunk lists (chunks in ray order). Shared by every
  * scene kernel (entities/scene_kernel.h), so it is part of the dialect (kernels/dialect.h).
  *
  * One ray a call, scalar code: each ray meets its own instances, so SIMD lanes would
@@ -70,8 +71,9 @@ VX_FN void vx_sc_slab(float o, float inv, float lo, float hi, VX_INOUT(float) t0
     VX_REF(t1) = vx_fmin(VX_REF(t1), vx_fmax(ta, tb));
 }
 
-/* Entry t of the ray into node `node`'s box, clipped to [tmin, tmax]; VX_INF when it
- * misses the box or enters after tmax. (Boxes carry a margin for rounding, placed_box.) */
+/* Entry t of the ray into the box at word `node` (a BVH node's, or an instance's in the chunk
+ * lists: min x, y, z, max x, y, z), clipped to [tmin, tmax]; VX_INF when it misses the box
+ * or enters after tmax. (Boxes carry a margin for rounding, placed_box.) */
 VX_FN float vx_sc_box_enter(VX_BLOB blob, uint node, vx_sc_box_ray b, float tmax) {
     float t0 = b.r.tmin;
     float t1 = tmax;
@@ -147,6 +149,50 @@ VX_FN vx_hit vx_sc_test_instance(VX_BLOB blob, uint slot, vx_ray r, vx_hit best,
     return best;
 }
 
+/* The chunk lists' way to the same answer as vx_entities_trace (entities/layout.h): the
+ * ray walks the 16^3 chunks of the lists' grid in order, up to the best hit so far, and
+ * tests each instance of a chunk's list whose world box it enters in that chunk (so an
+ * instance once a ray, however many chunks it spans). After a chunk, a hit before the
+ * chunk's far side ends the walk: every instance not yet tested is entered beyond it.
+ * Steps add a chunk each. */
+VX_FN vx_hit vx_entities_trace_chunks(VX_BLOB blob, uint lists, vx_ray r, vx_hit best, uint mode) {
+    int nx = vx_u2i(vx_load(blob, lists + VX_SC_CHUNK_SIZE + 0u));
+    int ny = vx_u2i(vx_load(blob, lists + VX_SC_CHUNK_SIZE + 1u));
+    int nz = vx_u2i(vx_load(blob, lists + VX_SC_CHUNK_SIZE + 2u));
+    vx_ray c = r;
+    c.tmax = best.status == VX_STATUS_HIT ? best.t : r.tmax;
+    vx_dda d = vx_dda_begin_scaled(c, vx_i2f(vx_u2i(vx_load(blob, lists + VX_SC_CHUNK_MIN + 0u))),
+                                   vx_i2f(vx_u2i(vx_load(blob, lists + VX_SC_CHUNK_MIN + 1u))),
+                                   vx_i2f(vx_u2i(vx_load(blob, lists + VX_SC_CHUNK_MIN + 2u))), nx, ny, nz,
+                                   vx_i2f(VX_SC_CHUNK_EDGE));
+    uint chunks = lists + vx_load(blob, lists + VX_SC_CHUNK_WORDS);
+    vx_sc_box_ray b = vx_sc_box_ray_make(r);
+    uint best_slot = VX_SC_FREE_SLOT;
+    /* The first chunk also takes instances entered before it (by rounding at the grid's side). */
+    float enter_from = -VX_INF;
+    while (d.status == VX_STATUS_ACTIVE) {
+        best.steps = best.steps + 1u;
+        float leave = vx_fmin(d.nx, vx_fmin(d.ny, d.nz));
+        uint list = vx_load(blob, chunks + vx_i2u(d.cx + nx * (d.cy + ny * d.cz)));
+        if (list != 0u) {
+            uint count = vx_load(blob, lists + list);
+            for (uint k = 0u; k < count; ++k) {
+                uint slot = vx_load(blob, lists + list + 1u + k);
+                float tmax = best.status == VX_STATUS_HIT ? best.t : r.tmax;
+                float enter = vx_sc_box_enter(blob, lists + VX_SC_CHUNK_BOXES + slot * VX_SC_CHUNK_BOX_WORDS, b, tmax);
+                if (!(enter >= enter_from && enter < leave)) continue;
+                best = vx_sc_test_instance(blob, slot, r, best, VX_ADDR(best_slot), mode);
+                if (mode == VX_MODE_ANY && best.status == VX_STATUS_HIT) return best;
+            }
+        }
+        /* A hit exactly on the far side waits: an instance entered there may tie with a lower slot. */
+        if (best.status == VX_STATUS_HIT && best.t < leave) break;
+        enter_from = leave;
+        d = vx_dda_advance(d, true, nx, ny, nz);
+    }
+    return best;
+}
+
 /* `best`: the world's hit for ray r (or its miss). Returns the nearest of it and every
  * instance hit; any-hit returns at the first hit. Steps add the boxes opened and the
  * models' voxel steps. */
@@ -155,6 +201,8 @@ VX_FN vx_hit vx_entities_trace(VX_BLOB blob, vx_ray r, vx_hit best, uint mode) {
     uint items = vx_load(blob, VX_SC_HEADER_ITEMS);
     if (vx_load(blob, VX_SC_HEADER_NODE_COUNT) == 0u) return best;
     if (mode == VX_MODE_ANY && best.status == VX_STATUS_HIT) return best;
+    uint lists = vx_load(blob, VX_SC_HEADER_CHUNKS);
+    if (lists != 0u) return vx_entities_trace_chunks(blob, lists, r, best, mode);
     vx_sc_box_ray b = vx_sc_box_ray_make(r);
     uint best_slot = VX_SC_FREE_SLOT;
     /* Nodes whose box the ray enters, with the entry t, still to visit: one a level. */

@@ -5,15 +5,18 @@
 // registers its scene kernel.
 //
 // The world is walked first, unchanged, then the instances whose boxes the ray meets before
-// the world's hit: the world's own fields never hear of entities, so moving them never
-// resets or regrows a field (the NAADF paper marks chunks with entities as non-empty
-// instead, which costs the world's tracing and upkeep).
+// the world's hit, found by a BVH or by chunk lists (set_candidates): the world's own fields
+// never hear of entities, so moving them never resets or regrows a field (the NAADF paper
+// marks chunks with entities as non-empty instead, which costs the world's tracing and
+// upkeep).
 //
 // Threads: add, move, remove and the model calls may come from any thread; they record the
 // change and return. Tracers (update) and other consumers take consistent frames
 // (snapshot, changes_since), which first fold the changes into the words: moved instances
-// cost their record and the BVH nodes above them; added or removed ones a BVH rebuild;
-// more slots or another model a new layout, sent whole. The world is the caller's and must
+// cost their record and the BVH nodes above them (with chunk lists: their boxes and the
+// lists of the chunks they left or entered); added or removed ones a BVH rebuild (and a
+// build of the chunk lists); more slots, another model or another way to find candidates
+// a new layout, sent whole. The world is the caller's and must
 // outlive the scene; where it is edited in place (brickmap, NAADF), a frame also takes the
 // world's changed words.
 #pragma once
@@ -32,6 +35,8 @@
 #include "voxray/core/blob.hpp"
 #include "voxray/core/error.hpp"
 #include "voxray/core/word_range.hpp"
+#include "voxray/entities/candidates.hpp"
+#include "voxray/entities/chunk_lists.hpp"
 #include "voxray/entities/entity_model.hpp"
 #include "voxray/entities/instance_bvh.hpp"
 #include "voxray/entities/layout.h"
@@ -151,6 +156,17 @@ public:
     }
     World& world() { return world_; }
 
+    // How the kernels find candidate instances (entity_candidates): a new layout, sent whole.
+    void set_candidates(entity_candidates c) {
+        std::unique_lock lock(m_);
+        if (c != candidates_) relayout_ = true;
+        candidates_ = c;
+    }
+    entity_candidates candidates() const {
+        std::shared_lock lock(m_);
+        return candidates_;
+    }
+
     // ---- what consumers read (see the top comment) ----
     sync_frame snapshot() const {
         std::unique_lock lock(m_);
@@ -176,8 +192,8 @@ public:
     }
     std::size_t bytes() const { return blob().size() * sizeof(std::uint32_t); }
 
-    // Bytes of instance records and BVH nodes the last commits changed (what update sends
-    // for entities, world changes aside): reported like the structures' own updates.
+    // Bytes of instance records, BVH nodes and chunk lists the last commits changed (what
+    // update sends for entities, world changes aside): reported like the structures' own.
     std::uint64_t entity_words_changed_last_commit() const {
         std::shared_lock lock(m_);
         return entity_words_last_;
@@ -213,12 +229,6 @@ private:
         for (std::uint32_t id = 0; id < slots_.size(); ++id)
             if (slots_[id].moved) moved_.push_back(id);
     }
-    // Adds words [offset, offset + count) to `ranges`, joined to the last range where they
-    // follow it (moved records and refitted nodes come in increasing order).
-    static void append_range(std::vector<word_range>& ranges, std::uint32_t offset, std::uint32_t count) {
-        if (!ranges.empty() && ranges.back().offset + ranges.back().count == offset) ranges.back().count += count;
-        else ranges.push_back({offset, count});
-    }
 
     void check_model(model_id id) const {
         if (id >= models_.size() || !model_live_[id])
@@ -238,14 +248,11 @@ private:
         std::uint32_t capacity = std::max<std::uint32_t>(16, std::bit_ceil(std::uint32_t(std::max<std::size_t>(slots_.size(), 1))));
         if (relayout_ || capacity != capacity_) {
             capacity_ = capacity;
-            lay_out();
-            log_.commit({}, true, std::uint32_t(words_.size()));
-            entity_words_last_ = words_.size() - world_words_;
-            relayout_ = membership_changed_ = false;
-            clear_moved();
+            commit_new_layout();
             return;
         }
         std::uint64_t entity_words = 0;
+        bool lists_ok = true;
         if (membership_changed_) {
             for (std::uint32_t s = 0; s < slots_.size(); ++s) write_slot(s);
             ranges.push_back({instances_, std::uint32_t(slots_.size()) * VX_SC_INSTANCE_WORDS});
@@ -253,21 +260,27 @@ private:
             ranges.push_back({0, VX_SC_HEADER_WORDS});
             ranges.push_back({nodes_, bvh_.node_count() * VX_SC_NODE_WORDS});
             ranges.push_back({items_, std::uint32_t(bvh_.items().size())});
+            if (lists_at_ != 0) lists_ok = refresh_lists(ranges, nullptr);
             membership_changed_ = false;
             clear_moved();
         } else if (!moved_.empty()) {
             sort_moved();
             for (instance_id id : moved_) {
                 write_slot(id);
-                append_range(ranges, instances_ + id * VX_SC_INSTANCE_WORDS, VX_SC_INSTANCE_WORDS);
+                append_joined(ranges, instances_ + id * VX_SC_INSTANCE_WORDS, VX_SC_INSTANCE_WORDS);
                 boxes_[id] = box_of(id);
             }
             for (std::uint32_t n : bvh_.refit(moved_, boxes_)) {
                 std::copy_n(bvh_.node_words().begin() + n * VX_SC_NODE_WORDS, VX_SC_NODE_WORDS,
                             words_.begin() + nodes_ + n * VX_SC_NODE_WORDS);
-                append_range(ranges, nodes_ + n * VX_SC_NODE_WORDS, VX_SC_NODE_WORDS);
+                append_joined(ranges, nodes_ + n * VX_SC_NODE_WORDS, VX_SC_NODE_WORDS);
             }
+            if (lists_at_ != 0) lists_ok = refresh_lists(ranges, &moved_);
             clear_moved();
+        }
+        if (!lists_ok) {
+            commit_new_layout();  // the lists outgrew their room
+            return;
         }
         for (auto& r : ranges)
             if (r.offset >= world_end()) entity_words += r.count;
@@ -275,7 +288,43 @@ private:
         log_.commit(ranges, false, std::uint32_t(words_.size()));
     }
 
+    void commit_new_layout() const {
+        lay_out();
+        log_.commit({}, true, std::uint32_t(words_.size()));
+        entity_words_last_ = words_.size() - world_words_;
+        relayout_ = membership_changed_ = false;
+        clear_moved();
+    }
+
     std::uint32_t world_end() const { return VX_SC_WORLD + world_words_; }
+
+    std::vector<std::uint32_t> live_slots() const {
+        std::vector<std::uint32_t> live;
+        for (std::uint32_t s = 0; s < slots_.size(); ++s)
+            if (slots_[s].live) live.push_back(s);
+        return live;
+    }
+
+    // Brings the chunk lists up to date with the boxes (only the moved instances', where
+    // `moved` is given: their boxes and the lists they left or entered, else a full build)
+    // and adds the words that changed to `ranges`; false where they outgrew their room.
+    bool refresh_lists(std::vector<word_range>& ranges, const std::vector<instance_id>* moved) const {
+        if (moved && chunk_lists_.move(*moved, boxes_, live_)) {
+            const auto& fresh = chunk_lists_.words();
+            if (fresh.size() > lists_room_) return false;
+            for (const word_range& r : chunk_lists_.changed()) {
+                std::copy_n(fresh.begin() + r.offset, r.count, words_.begin() + lists_at_ + r.offset);
+                append_joined(ranges, lists_at_ + r.offset, r.count);
+            }
+            return true;
+        }
+        chunk_lists_.build(live_slots(), boxes_, capacity_);
+        const auto& fresh = chunk_lists_.words();
+        if (fresh.size() > lists_room_) return false;
+        std::copy(fresh.begin(), fresh.end(), words_.begin() + lists_at_);
+        append_joined(ranges, lists_at_, std::uint32_t(fresh.size()));
+        return true;
+    }
 
     // The world's words: all of them at the first layout; then, for a world edited in place,
     // the ranges it changed (a new layout where it changed size).
@@ -325,6 +374,17 @@ private:
         std::uint64_t nodes = instances + std::uint64_t(capacity_) * VX_SC_INSTANCE_WORDS;
         std::uint64_t items = nodes + std::uint64_t(2 * capacity_) * VX_SC_NODE_WORDS;
         std::uint64_t end = items + capacity_;
+        // The chunk lists' room: what they need now four times over (lists are appended as
+        // instances move, up to as many words again, then packed by a full build).
+        lists_at_ = 0, lists_room_ = 0;
+        if (candidates_ == entity_candidates::chunk_lists) {
+            boxes_.assign(slots_.size(), world_box{});
+            for (std::uint32_t s : live_slots()) boxes_[s] = box_of(s);
+            chunk_lists_.build(live_slots(), boxes_, capacity_);
+            lists_room_ = std::bit_ceil(4 * std::uint32_t(chunk_lists_.words().size()) + 2048);
+            lists_at_ = std::uint32_t(end);
+            end += lists_room_;
+        }
         check_blob_size("scene", end);
         words_.assign(end, 0u);
         instances_ = std::uint32_t(instances), nodes_ = std::uint32_t(nodes), items_ = std::uint32_t(items);
@@ -340,6 +400,10 @@ private:
             if (model_live_[m]) std::copy(models_[m].words().begin(), models_[m].words().end(), words_.begin() + model_offset_[m]);
         for (std::uint32_t s = 0; s < capacity_; ++s) write_slot(s);
         rebuild_bvh();
+        if (lists_at_ != 0) {
+            std::copy(chunk_lists_.words().begin(), chunk_lists_.words().end(), words_.begin() + lists_at_);
+            words_[VX_SC_HEADER_CHUNKS] = lists_at_;
+        }
     }
 
     void write_slot(std::uint32_t s) const {
@@ -357,13 +421,12 @@ private:
 
     void rebuild_bvh() const {
         boxes_.assign(slots_.size(), world_box{});
-        std::vector<std::uint32_t> live;
-        for (std::uint32_t s = 0; s < slots_.size(); ++s)
-            if (slots_[s].live) {
-                boxes_[s] = box_of(s);
-                live.push_back(s);
-            }
-        bvh_.build(std::move(live), boxes_);
+        std::vector<std::uint32_t> live = live_slots();
+        for (std::uint32_t s : live) boxes_[s] = box_of(s);
+        // With chunk lists the kernels read only the root's box (the SIMD lanes' early-out):
+        // one leaf, refit in one pass over the boxes.
+        bool root_only = candidates_ == entity_candidates::chunk_lists;
+        bvh_.build(std::move(live), boxes_, root_only ? VX_SC_MAX_SLOTS : instance_bvh::leaf_size);
         std::copy(bvh_.node_words().begin(), bvh_.node_words().end(), words_.begin() + nodes_);
         std::copy(bvh_.items().begin(), bvh_.items().end(), words_.begin() + items_);
         words_[VX_SC_HEADER_NODE_COUNT] = bvh_.node_count();
@@ -386,6 +449,9 @@ private:
     mutable std::vector<std::uint32_t> model_offset_;
     mutable std::vector<world_box> boxes_;
     mutable instance_bvh bvh_;
+    entity_candidates candidates_ = entity_candidates::bvh;
+    mutable chunk_lists chunk_lists_;
+    mutable std::uint32_t lists_at_ = 0, lists_room_ = 0;  // the chunk lists' offset and room
     mutable change_log log_;
     mutable std::uint32_t capacity_ = 0, world_words_ = 0, instances_ = 0, nodes_ = 0, items_ = 0;
     mutable std::uint64_t world_generation_ = 0, entity_words_last_ = 0;
