@@ -25,3 +25,22 @@ for n in 100 1000 10000; do
 done
 /usr/bin/python3 scripts/entity_table.py "$OUT"/herd_*.jsonl --out "$OUT/table.md"
 cat "$OUT/table.md"
+
+# Entity models with brick distance fields against walks voxel by voxel: the herd (small
+# models) and 300 large ones (arches, one in twenty a block of flying apartments), each
+# scene written with fields and without ("fields": "none"), benchmarked in turn.
+FIELDS=$OUT/fields
+mkdir -p "$FIELDS"
+for scene in herd_1000 models_300; do
+    models=() count=1000
+    [[ $scene == models_300 ]] && models=(--model arc=vox/minecraft_arc.vox --model apts=vox/flyingapts.vox) count=300
+    for fields in none bricks; do
+        file=$FIELDS/$scene$([[ $fields == none ]] && echo _none).json
+        /usr/bin/python3 scripts/make_entity_scene.py "$file" --world builtin:terrain:512 --count "$count" \
+            --extent 512 512 131 --data "$DATA" --model-fields "$fields" "${models[@]}"
+        "$VOXRAY" bench "$file" --structures naadf,svdag --runs "$RUNS" --width "$WIDTH" --height "$HEIGHT" \
+            --out "${file%.json}.jsonl" 2>/dev/null
+    done
+done
+/usr/bin/python3 scripts/entity_table.py "$FIELDS"/*.jsonl --out "$FIELDS/table.md"
+tail -n 40 "$FIELDS/table.md"

@@ -4,7 +4,9 @@
 with no scene, with the instances off the rays' paths and in view, the overhead of entities
 off the paths against the world alone, Embree's instancing peer on the same rays, and the
 per-frame update with every instance moving; candidates found by the BVH (the default).
-Then the BVH against the chunk lists (the other way to find candidates) on the same rays.
+Then the BVH against the chunk lists (the other way to find candidates) on the same rays,
+and, where the results hold scenes whose models have no distance fields (scene files named
+*_none.json), model walks by brick fields against walks voxel by voxel.
 
     entity_table.py docs/bench/entities/herd_*.jsonl --out docs/bench/entities/table.md
 """
@@ -16,9 +18,34 @@ def rows_of(path):
     with open(path) as f:
         lines = [json.loads(line) for line in f if line.strip()]
     rows = [r for r in lines if r.get("type") in ("row", "update")]
-    for r in rows:  # results from before the chunk lists: the BVH
+    for r in rows:  # results from before the chunk lists: the BVH; from before model fields: none
         r.setdefault("candidates", "-" if r.get("placement") == "none" else "bvh")
+        r.setdefault("model_fields", "none")
     return rows
+
+
+def fields_table(rows):
+    """Model walks by brick distance fields against voxel by voxel: in-view rates and steps."""
+    out = ["", "Entity models with brick distance fields against walks voxel by voxel (in view; the scenes "
+           "alternate in one run; ratio > 1: the fields are faster):", "",
+           "| scene | world | backend | candidates | rays | voxel by voxel | fields | ratio | steps/ray voxel by voxel "
+           "| fields |", "|---|---|---|---|---|---:|---:|---:|---:|---:|"]
+    groups = {}
+    for r in rows:
+        if r["type"] == "row" and r["placement"] == "in-view" and r["model_fields"] in ("bricks", "none"):
+            scene = r["scene"].rsplit("/", 1)[-1].replace("_none.json", ".json")
+            key = (scene, r["world"], r["backend"], r["candidates"], r["ray_set"])
+            groups.setdefault(key, {}).setdefault(r["model_fields"], []).append(r)
+    found = False
+    for key in sorted(groups):
+        by = groups[key]
+        if "bricks" not in by or "none" not in by:
+            continue
+        found = True
+        rate = {k: sorted(x["mrays_median"] for x in v)[len(v) // 2] for k, v in by.items()}
+        out.append(f"| {' | '.join(key)} | {rate['none']:.2f} | {rate['bricks']:.2f} | {rate['bricks'] / rate['none']:.2f}x "
+                   f"| {by['none'][0]['steps_per_ray']:.1f} | {by['bricks'][0]['steps_per_ray']:.1f} |")
+    return out if found else []
 
 
 def candidates_table(rows, counts):
@@ -30,7 +57,8 @@ def candidates_table(rows, counts):
            "|---:|---|---|---|---:|---:|---:|---:|---:|---:|---:|---:|"]
     found = False
     for n in counts:
-        scene_rows = [r for r in rows if r["type"] == "row" and r["entities"] == n and r["placement"] != "none"]
+        scene_rows = [r for r in rows if r["type"] == "row" and r["entities"] == n and r["placement"] != "none"
+                      and not r["scene"].endswith("_none.json")]
         keys = sorted({(r["world"], r["backend"], r["ray_set"]) for r in scene_rows if r["candidates"] == "chunk-lists"})
         for world, backend, ray_set in keys:
             by = {(r["candidates"], r["placement"]): r for r in scene_rows
@@ -91,6 +119,7 @@ def main():
         out += ["", f"Embree's instancing peer (float quads, compared by hit status only): {disagree:,} of {rays:,} "
                 f"timed rays disagree with voxray's hits."]
     out += candidates_table(rows, counts)
+    out += fields_table(rows)
     out += ["", "Update per frame, every instance moving (host: scene.move of the batch + tracer.update):", "",
             "| instances | world | backend | candidates | update ms | bytes sent |", "|---:|---|---|---|---:|---:|"]
     for n in counts:

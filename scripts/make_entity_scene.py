@@ -21,6 +21,11 @@ def main():
                    help="the box (from 0) the instances start in, world voxels")
     p.add_argument("--data", default="../shared/data", help="the shared data folder (relative to the repository)")
     p.add_argument("--seed", type=int, default=1)
+    p.add_argument("--model", action="append", metavar="NAME=FILE",
+                   help="a model (FILE under --data); the first is placed 19 times in 20, the second (at half"
+                        " scale) the 20th; default deer=vox/bevy_deer_v200.vox tree=vox/minecraft_tree.vox")
+    p.add_argument("--model-fields", choices=["bricks", "none"], default="bricks",
+                   help="whether model walks cross empty bricks by distance fields")
     a = p.parse_args()
 
     out_dir = os.path.dirname(os.path.abspath(a.out))
@@ -28,21 +33,24 @@ def main():
         return path if path.startswith("builtin:") else os.path.relpath(os.path.abspath(path), out_dir)
 
     models = {}
-    for name, file, fallback in [("deer", "vox/bevy_deer_v200.vox", "builtin:sphere30"),
-                                 ("tree", "vox/minecraft_tree.vox", "builtin:checker")]:
+    chosen = [("deer", "vox/bevy_deer_v200.vox", "builtin:sphere30"), ("tree", "vox/minecraft_tree.vox", "builtin:checker")]
+    if a.model:
+        chosen = [(m.split("=", 1)[0], m.split("=", 1)[1], "builtin:sphere30") for m in a.model]
+    for name, file, fallback in chosen:
         path = os.path.join(a.data, file)
-        models[name] = {"file": ref(path) if os.path.exists(path) else fallback}
+        models[name] = {"file": ref(path) if os.path.exists(path) else fallback, "fields": a.model_fields}
     world = a.world if a.world.startswith("builtin:") else ref(a.world)
 
     g = random.Random(a.seed)
     instances = []
     for i in range(a.count):
-        inst = {"model": "tree" if i % 20 == 0 else "deer",
+        second = i % 20 == 0 and len(chosen) > 1
+        inst = {"model": chosen[1 if second else 0][0],
                 "position": [round(g.uniform(0, e), 2) for e in a.extent],
                 "rotation": [round(x, 4) for x in (g.uniform(-1, 1), 0, 0, g.uniform(-1, 1))]}
         if inst["rotation"] == [0, 0, 0, 0]:
             inst["rotation"] = [1, 0, 0, 0]
-        if inst["model"] == "tree":
+        if second:
             inst["scale"] = 0.5
         kind = i % 3
         if kind == 0:

@@ -18,6 +18,20 @@ if [[ $last == "0 mismatches" ]] && grep -qE "^naadf +vulkan +bvh +[1-9][0-9]* +
    grep -qE "^naadf +vulkan +chunk-lists +[1-9][0-9]* +0$" <<< "$out"; then echo "ok   check: $last"
 else echo "FAIL check: last line '$last'"; failures=$((failures + 1)); fi
 
+# Models cut from a region of a file, one without distance fields: every combination exact.
+cat > "$work/cut.json" <<'JSON'
+{"world": "builtin:terrain:64",
+ "models": {"hill": {"file": "builtin:terrain:128", "region": [20, 20, 0, 60, 60, 40]},
+            "plain": {"file": "builtin:terrain:128", "region": [0, 0, 0, 30, 30, 20], "fields": "none"}},
+ "instances": [{"model": "hill", "position": [20, 30, 30], "rotation": [0.9, 0.1, 0.3, 0.2], "motion": {"spin": [0, 0, 1, 0.3]}},
+               {"model": "plain", "position": [40, 20, 25], "motion": {"linear": [1, 0.5, 0]}},
+               {"model": "hill", "position": [50, 50, 20], "scale": 0.5}]}
+JSON
+out=$("$tool" check "$work/cut.json" --frames 3 --rays 2000 2>/dev/null) || { echo "FAIL check cut: exit $?"; echo "$out"; failures=$((failures + 1)); }
+last=$(tail -n 1 <<< "$out")
+if [[ $last == "0 mismatches" ]] && grep -qE "^dense +opencl +bvh +[1-9][0-9]* +0$" <<< "$out"; then echo "ok   check cut regions: $last"
+else echo "FAIL check cut regions: last line '$last'"; echo "$out" | tail -n 5; failures=$((failures + 1)); fi
+
 "$tool" render "$work/herd.json" --frames 2 --structure naadf --backend cpu --width 160 --height 90 \
     --out "$work/frame.png" > /dev/null 2>&1 || { echo "FAIL render: exit $?"; failures=$((failures + 1)); }
 for f in frame_000.png frame_001.png; do
@@ -44,5 +58,11 @@ expect_failure no_world 'no_world.json: world: missing, or not a string' \
 expect_failure not_json 'not_json.json: not JSON' "$tool" check "$(bad not_json "{\"world\": ")"
 expect_failure missing_model_file 'error: .*nonexistent.vox' \
     "$tool" check "$(bad missing_file "{\"world\": \"builtin:sphere30\", \"models\": {\"m\": {\"file\": \"nonexistent.vox\"}}, \"instances\": []}")"
+expect_failure unknown_fields 'bad_fields.json: models.m.fields: "maybe" is neither "bricks" nor "none"' \
+    "$tool" check "$(bad bad_fields "{\"world\": \"builtin:sphere30\", \"models\": {\"m\": {\"file\": \"builtin:sphere30\", \"fields\": \"maybe\"}}, \"instances\": []}")"
+expect_failure bad_region 'bad_region.json: models.m.region: expected whole voxel coordinates within \+-2\^30 \(0.5\)' \
+    "$tool" check "$(bad bad_region "{\"world\": \"builtin:sphere30\", \"models\": {\"m\": {\"file\": \"builtin:sphere30\", \"region\": [0.5, 0, 0, 8, 8, 8]}}, \"instances\": []}")"
+expect_failure empty_region 'models.m.region: region model: the region is 0 x 8 x 8 voxels' \
+    "$tool" check "$(bad empty_region "{\"world\": \"builtin:sphere30\", \"models\": {\"m\": {\"file\": \"builtin:sphere30\", \"region\": [4, 0, 0, 4, 8, 8]}}, \"instances\": []}")"
 expect_failure frames_need_a_scene_file '--frames 3: only a scene file' "$tool" check builtin:sphere30 --frames 3
 finish

@@ -16,6 +16,7 @@
 #include "cli.hpp"
 #include "image_writer.hpp"
 #include "voxray/entities/reference.hpp"
+#include "voxray/entities/region_model.hpp"
 #include "voxray/generated/structures.hpp"
 #include "voxray/rays.hpp"
 
@@ -61,7 +62,7 @@ entity_instance read_instance(const scene_description& d, const json& v, std::si
     entity_instance e;
     e.model = scene_text(d, v, "model", where + ".");
     bool known = false;
-    for (auto& [name, file] : d.models) known |= name == e.model;
+    for (auto& m : d.models) known |= m.name == e.model;
     if (!known) scene_file_error(d, where + ".model", "no model named \"" + e.model + "\" in \"models\"");
     if (!v.contains("position")) scene_file_error(d, where + ".position", "missing");
     auto p = scene_numbers(d, v["position"], where + ".position", 3);
@@ -103,7 +104,7 @@ template <class World, class Backend>
 class entity_run_of : public entity_run {
 public:
     explicit entity_run_of(const loaded_scene& s) : s_(s), world_(s.world), scene_(world_), world_tracer_(world_) {
-        for (auto& m : s.models) scene_.add_model(m);
+        for (auto& m : s.entity_models) scene_.add_model(m);
         for (std::size_t i = 0; i < s.description.instances.size(); ++i)
             ids_.push_back(scene_.add(s.model_of[i], s.description.instances[i].start));
         tracer_ = std::make_unique<tracer<Backend, scene<World>>>(scene_);
@@ -227,7 +228,24 @@ scene_description read_scene_description(const std::filesystem::path& file) {
     if (!doc.is_object()) scene_file_error(d, "(top)", "not an object");
     d.world = scene_path(d, scene_text(d, doc, "world", ""));
     if (!doc.contains("models") || !doc["models"].is_object()) scene_file_error(d, "models", "missing, or not an object");
-    for (auto& [name, m] : doc["models"].items()) d.models.push_back({name, scene_path(d, scene_text(d, m, "file", "models." + name + "."))});
+    for (auto& [name, m] : doc["models"].items()) {
+        scene_model_file f{name, scene_path(d, scene_text(d, m, "file", "models." + name + ".")), model_fields::bricks, std::nullopt};
+        if (m.contains("fields")) {
+            std::string fields = scene_text(d, m, "fields", "models." + name + ".");
+            if (fields != "bricks" && fields != "none")
+                scene_file_error(d, "models." + name + ".fields", "\"" + fields + "\" is neither \"bricks\" nor \"none\"");
+            f.fields = fields == "bricks" ? model_fields::bricks : model_fields::none;
+        }
+        if (m.contains("region")) {
+            std::string at = "models." + name + ".region";
+            auto r = scene_numbers(d, m["region"], at, 6);
+            for (float v : r)
+                if (v != std::floor(v) || std::abs(v) > float(1 << 30))
+                    scene_file_error(d, at, "expected whole voxel coordinates within +-2^30 (" + json(v).dump() + ")");
+            f.region = box3i{{int(r[0]), int(r[1]), int(r[2])}, {int(r[3]), int(r[4]), int(r[5])}};
+        }
+        d.models.push_back(f);
+    }
     if (!doc.contains("instances") || !doc["instances"].is_array()) scene_file_error(d, "instances", "missing, or not an array");
     for (std::size_t i = 0; i < doc["instances"].size(); ++i) d.instances.push_back(read_instance(d, doc["instances"][i], i));
     return d;
@@ -237,10 +255,20 @@ loaded_scene load_scene_description(const std::string& spec, const scene_options
     loaded_scene s;
     s.description = read_scene_description(spec);
     s.world = load_scene(s.description.world, o);
-    for (auto& [name, file] : s.description.models) s.models.push_back(load_scene(file, o));
+    for (auto& m : s.description.models) {
+        s.models.push_back(load_scene(m.file, o));
+        if (m.region) {
+            try {
+                s.models.back() = region_model(s.models.back(), *m.region);
+            } catch (const error& x) {
+                scene_file_error(s.description, "models." + m.name + ".region", x.what());
+            }
+        }
+        s.entity_models.emplace_back(s.models.back(), m.fields);
+    }
     for (auto& e : s.description.instances)
         for (std::uint32_t m = 0; m < s.description.models.size(); ++m)
-            if (s.description.models[m].first == e.model) s.model_of.push_back(m);
+            if (s.description.models[m].name == e.model) s.model_of.push_back(m);
     return s;
 }
 

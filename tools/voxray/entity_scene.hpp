@@ -15,14 +15,17 @@
 #include <filesystem>
 #include <functional>
 #include <memory>
+#include <optional>
 #include <span>
 #include <string>
 #include <vector>
 
 #include "scene.hpp"
+#include "voxray/core/box.hpp"
 #include "voxray/core/hit.hpp"
 #include "voxray/core/ray.hpp"
 #include "voxray/entities/candidates.hpp"
+#include "voxray/entities/entity_model.hpp"
 #include "voxray/entities/pose.hpp"
 #include "voxray/model/voxel_model.hpp"
 
@@ -42,12 +45,32 @@ struct entity_instance {
     pose at(int frame, int up) const;
 };
 
+// A model of a scene file: "models": {NAME: {"file": SPEC, "fields": "bricks" | "none",
+// "region": [x0, y0, z0, x1, y1, z1]}} (the region: a box of the file's voxels, max
+// exclusive, cut out as the model; entities/region_model.hpp).
+struct scene_model_file {
+    std::string name;
+    std::string file;  // a scene spec
+    model_fields fields = model_fields::bricks;
+    std::optional<box3i> region;
+};
+
 struct scene_description {
     std::filesystem::path file;
     std::string world;  // a scene spec: file path (resolved) or builtin:NAME
-    std::vector<std::pair<std::string, std::string>> models;  // name, scene spec
+    std::vector<scene_model_file> models;
     std::vector<entity_instance> instances;
 };
+
+// How the scene's model walks cross empty space: "bricks", "none", or "mixed" where models differ.
+inline std::string model_fields_label(const scene_description& d) {
+    std::string label;
+    for (auto& m : d.models) {
+        std::string mine = m.fields == model_fields::bricks ? "bricks" : "none";
+        label = label.empty() || label == mine ? mine : "mixed";
+    }
+    return label;
+}
 
 inline bool is_scene_description(const std::string& spec) {
     return std::filesystem::path(spec).extension() == ".json";
@@ -61,6 +84,7 @@ struct loaded_scene {
     scene_description description;
     voxel_model world;
     std::vector<voxel_model> models;  // in the order of description.models
+    std::vector<entity_model> entity_models;  // the same, built once for every run
     std::vector<std::uint32_t> model_of;  // per instance: its model's index
 };
 loaded_scene load_scene_description(const std::string& spec, const scene_options& o);

@@ -38,6 +38,18 @@
  *         model's own coordinates)
  *  6      offset of the occupancy bits     (words from the model record's start, so a
  *  7      offset of the material bytes      record reads the same wherever it lies)
+ *  8      offset of the brick fields (0: none, the walk visits every voxel)
+ *
+ *  brick fields: a word per 4^3 brick of the model's box, brick (x, y, z) at
+ *  x + bx * (y + by * z), (bx, by, bz) = extent / 4 rounded up
+ *   31  30  29     25 24     20 19     15 14     10 9       5 4       0
+ *  +---+---+---------+---------+---------+---------+---------+---------+
+ *  | S | 0 |   -z    |   +z    |   -y    |   +y    |   -x    |   +x    |
+ *  +---+---+---------+---------+---------+---------+---------+---------+
+ *  S = 1: a voxel of the brick is solid (the walk visits its voxels; the fields are 0).
+ *  S = 0: the brick is empty, and so is the cuboid of bricks reaching that many bricks
+ *  from it in each direction (an axis-aligned distance field, at most 31, never past the
+ *  brick grid): the walk leaves the cuboid in one move.
  *
  *  chunk lists (offsets in words from the section's start; chunk (x, y, z) of the grid is
  *  word chunks + x + nx * (y + ny * z))
@@ -60,7 +72,7 @@
 #define VOXRAY_LAYOUT_ENTITIES_LAYOUT_H
 
 #define VX_SC_MAGIC 0x43535856u /* "VXSC" little endian */
-#define VX_SC_VERSION 2u
+#define VX_SC_VERSION 3u
 
 #define VX_SC_HEADER_MAGIC 0
 #define VX_SC_HEADER_VERSION 1
@@ -105,6 +117,17 @@
 #define VX_EM_MIN 3
 #define VX_EM_BITS 6
 #define VX_EM_MATERIALS 7
+#define VX_EM_BRICKS 8
+/* Brick edge in voxels (a power of two: brick = voxel >> VX_EM_BRICK_SHIFT). */
+#define VX_EM_BRICK_SHIFT 2
+#define VX_EM_BRICK_EDGE (1 << VX_EM_BRICK_SHIFT)
+#define VX_EM_BRICK_SOLID 0x80000000u
+#define VX_EM_FIELD_BITS 5u
+#define VX_EM_FIELD_MAX 31u
+/* Field `dir` (0..5: +x, -x, +y, -y, +z, -z) of an empty brick's word, and the word part
+ * that puts `dist` there. */
+#define VX_EM_FIELD(word, dir) (((word) >> ((dir) * VX_EM_FIELD_BITS)) & VX_EM_FIELD_MAX)
+#define VX_EM_FIELD_PUT(dist, dir) ((dist) << ((dir) * VX_EM_FIELD_BITS))
 /* The largest model edge: the bit index of a model voxel stays within 32 bits. */
 #define VX_EM_MAX_EDGE 1024
 

@@ -105,18 +105,46 @@ VX_FN vx_ray vx_sc_model_ray(VX_BLOB blob, uint inst, vx_ray r, float tmax) {
 }
 
 /* The first solid voxel of the model record at `model` along model-frame ray q: voxel and
- * face in the model's own coordinates, the palette index in `material`. */
+ * face in the model's own coordinates, the palette index in `material`. In a brick with a
+ * solid voxel the walk steps voxel by voxel; an empty brick's field (entities/layout.h)
+ * names an empty cuboid of bricks around it, which the walk leaves in one move at the
+ * voxel the voxel-by-voxel walk would reach (vx_dda_leave_box). */
 VX_FN vx_hit vx_sc_model_walk(VX_BLOB blob, uint model, vx_ray q, uint mode) {
     int ex = vx_u2i(vx_load(blob, model + VX_EM_EXTENT + 0));
     int ey = vx_u2i(vx_load(blob, model + VX_EM_EXTENT + 1));
     int ez = vx_u2i(vx_load(blob, model + VX_EM_EXTENT + 2));
     uint bits = model + vx_load(blob, model + VX_EM_BITS);
+    uint fields = vx_load(blob, model + VX_EM_BRICKS);
+    uint bricks = model + fields;
+    int bx = (ex + (VX_EM_BRICK_EDGE - 1)) >> VX_EM_BRICK_SHIFT;
+    int by = (ey + (VX_EM_BRICK_EDGE - 1)) >> VX_EM_BRICK_SHIFT;
     vx_dda d = vx_dda_begin_scaled(q, 0.0f, 0.0f, 0.0f, ex, ey, ez, 1.0f);
+    /* The brick word last read (consecutive voxels mostly share a brick); a record with no
+     * fields reads as all bricks solid. */
+    int read_at = -1;
+    uint brick = VX_EM_BRICK_SOLID;
     while (d.status == VX_STATUS_ACTIVE) {
-        uint i = vx_i2u(VX_EM_INDEX(d.cx, d.cy, d.cz, ex, ey));
-        bool solid = ((vx_load(blob, bits + (i >> 5u)) >> (i & 31u)) & 1u) != 0u;
-        if (solid) d.status = VX_STATUS_HIT;
-        else d = vx_dda_advance(d, true, ex, ey, ez);
+        int b = (d.cx >> VX_EM_BRICK_SHIFT) + bx * ((d.cy >> VX_EM_BRICK_SHIFT) + by * (d.cz >> VX_EM_BRICK_SHIFT));
+        if (fields != 0u && b != read_at) {
+            brick = vx_load(blob, bricks + vx_i2u(b));
+            read_at = b;
+        }
+        if ((brick & VX_EM_BRICK_SOLID) != 0u) {
+            uint i = vx_i2u(VX_EM_INDEX(d.cx, d.cy, d.cz, ex, ey));
+            bool solid = ((vx_load(blob, bits + (i >> 5u)) >> (i & 31u)) & 1u) != 0u;
+            if (solid) d.status = VX_STATUS_HIT;
+            else d = vx_dda_advance(d, true, ex, ey, ez);
+            continue;
+        }
+        /* The empty cuboid, in voxels, cut at the model's box (its last bricks may stick out). */
+        int lx = ((d.cx >> VX_EM_BRICK_SHIFT) - vx_u2i(VX_EM_FIELD(brick, 1u))) << VX_EM_BRICK_SHIFT;
+        int ly = ((d.cy >> VX_EM_BRICK_SHIFT) - vx_u2i(VX_EM_FIELD(brick, 3u))) << VX_EM_BRICK_SHIFT;
+        int lz = ((d.cz >> VX_EM_BRICK_SHIFT) - vx_u2i(VX_EM_FIELD(brick, 5u))) << VX_EM_BRICK_SHIFT;
+        int hx = ((d.cx >> VX_EM_BRICK_SHIFT) + vx_u2i(VX_EM_FIELD(brick, 0u)) + 1) << VX_EM_BRICK_SHIFT;
+        int hy = ((d.cy >> VX_EM_BRICK_SHIFT) + vx_u2i(VX_EM_FIELD(brick, 2u)) + 1) << VX_EM_BRICK_SHIFT;
+        int hz = ((d.cz >> VX_EM_BRICK_SHIFT) + vx_u2i(VX_EM_FIELD(brick, 4u)) + 1) << VX_EM_BRICK_SHIFT;
+        d = vx_dda_leave_box(d, q.dx, q.dy, q.dz, lx, ly, lz, hx < ex ? hx : ex, hy < ey ? hy : ey, hz < ez ? hz : ez, true);
+        if (d.cx < 0 || d.cy < 0 || d.cz < 0 || d.cx >= ex || d.cy >= ey || d.cz >= ez) d.status = VX_STATUS_MISS;
     }
     uint material = 0u;
     if (mode == VX_MODE_CLOSEST && d.status == VX_STATUS_HIT) {

@@ -66,7 +66,9 @@ public:
     scene& operator=(const scene&) = delete;
 
     // ---- models ----
-    model_id add_model(const voxel_model& model) { return add_model(entity_model(model)); }
+    model_id add_model(const voxel_model& model, model_fields fields = model_fields::bricks) {
+        return add_model(entity_model(model, fields));
+    }
     model_id add_model(entity_model model) {
         std::unique_lock lock(m_);
         models_.push_back(std::move(model));
