@@ -2,8 +2,9 @@
 # Issue 26's measurements: scenes of 100, 1,000 and 10,000 moving instances (the shared deer
 # and tree models) over a 512^3 built-in terrain, benchmarked on every world kind with scenes
 # x backend (none / off-paths / in-view, and Embree's instancing peer in the same run), with
-# the per-frame update of every instance moving. Results in docs/bench/entities/, the table
-# (scripts/entity_table.py) in docs/entities.md.
+# the per-frame update of every instance moving; then entity models with distance fields
+# against walks voxel by voxel (docs/bench/entities/fields/). Results in docs/bench/entities/,
+# the tables (scripts/entity_table.py) in docs/entities.md.
 #
 #   scripts/entity_bench.sh [RUNS] [WIDTH HEIGHT]     # default 5 runs at 960 x 540
 set -euo pipefail
@@ -33,9 +34,12 @@ FIELDS=$OUT/fields
 mkdir -p "$FIELDS"
 for scene in herd_1000 models_300; do
     models=() count=1000
-    [[ $scene == models_300 ]] && models=(--model arc=vox/minecraft_arc.vox --model apts=vox/flyingapts.vox) count=300
+    if [[ $scene == models_300 ]]; then
+        models=(--model arc=vox/minecraft_arc.vox --model apts=vox/flyingapts.vox) count=300
+    fi
     for fields in none bricks; do
-        file=$FIELDS/$scene$([[ $fields == none ]] && echo _none).json
+        file=$FIELDS/$scene.json
+        if [[ $fields == none ]]; then file=$FIELDS/${scene}_none.json; fi
         /usr/bin/python3 scripts/make_entity_scene.py "$file" --world builtin:terrain:512 --count "$count" \
             --extent 512 512 131 --data "$DATA" --model-fields "$fields" "${models[@]}"
         "$VOXRAY" bench "$file" --structures naadf,svdag --runs "$RUNS" --width "$WIDTH" --height "$HEIGHT" \

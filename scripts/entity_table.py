@@ -32,7 +32,8 @@ def fields_table(rows):
            "| fields |", "|---|---|---|---|---|---:|---:|---:|---:|---:|"]
     groups = {}
     for r in rows:
-        if r["type"] == "row" and r["placement"] == "in-view" and r["model_fields"] in ("bricks", "none"):
+        if (r["type"] == "row" and r["placement"] == "in-view" and r["model_fields"] in ("bricks", "none")
+                and r["candidates"] != "embree"):
             scene = r["scene"].rsplit("/", 1)[-1].replace("_none.json", ".json")
             key = (scene, r["world"], r["backend"], r["candidates"], r["ray_set"])
             groups.setdefault(key, {}).setdefault(r["model_fields"], []).append(r)
