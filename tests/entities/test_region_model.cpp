@@ -55,9 +55,9 @@ TYPED_TEST_SUITE(region_model_on, every_backend, backend_names);
 
 // The region as an instance over an empty world, at the centre of its bounds with no
 // rotation: exact against the reference, and where the structure is: the hits name the
-// voxels and faces (or misses) the world's voxels in the box give. (The instance's frame adds P and
-// subtracts it again, so t agrees to rounding, and a ray grazing a voxel's edge may meet
-// its neighbour: a few in a thousand at most.)
+// voxels and faces (or misses) that the world's voxels in the box give. (The instance's
+// frame adds P and subtracts it again, so t agrees to rounding, and a ray grazing a
+// voxel's edge may meet its neighbour: a few in a thousand at most.)
 TYPED_TEST(region_model_on, an_instance_put_back_is_hit_where_the_structure_is) {
     voxel_model world_model = test_world();
     box3i box = cut_box(world_model);

@@ -143,7 +143,8 @@ int bench_scene_file(const bench_options& o) {
         if (out) out->stream() << row.dump() << "\n" << std::flush;
     };
     json base = {{"type", "row"}, {"scene", scene_label(spec)}, {"world_scene", scene_label(s.description.world)},
-                 {"entities", count}, {"model_fields", model_fields_label(s.description)}, {"width", o.width}, {"height", o.height}, {"rays", primary.size()}, {"runs", o.runs}};
+                 {"entities", count}, {"model_fields", model_fields_label(s.description)}, {"width", o.width},
+                 {"height", o.height}, {"rays", primary.size()}, {"runs", o.runs}};
 
     bool embree_done = false;
     for (auto& w : split_names(o.structures)) {

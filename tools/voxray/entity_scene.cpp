@@ -229,7 +229,8 @@ scene_description read_scene_description(const std::filesystem::path& file) {
     d.world = scene_path(d, scene_text(d, doc, "world", ""));
     if (!doc.contains("models") || !doc["models"].is_object()) scene_file_error(d, "models", "missing, or not an object");
     for (auto& [name, m] : doc["models"].items()) {
-        scene_model_file f{name, scene_path(d, scene_text(d, m, "file", "models." + name + ".")), model_fields::bricks, std::nullopt};
+        std::string model_file = scene_path(d, scene_text(d, m, "file", "models." + name + "."));
+        scene_model_file f{name, model_file, model_fields::bricks, std::nullopt};
         if (m.contains("fields")) {
             std::string fields = scene_text(d, m, "fields", "models." + name + ".");
             if (fields != "bricks" && fields != "none")

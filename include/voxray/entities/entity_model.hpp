@@ -16,9 +16,8 @@
 namespace voxray {
 
 // Whether a model walk crosses empty bricks by their distance fields (the default) or
-// visits every voxel (`none`: measured slower or level on every backend in
-// docs/entities.md, kept to measure against and for records small enough that the fields
-// cannot pay).
+// visits every voxel (`none`: slower than or level with the fields on every backend in
+// docs/entities.md; kept to measure against).
 enum class model_fields { bricks, none };
 
 class entity_model {
