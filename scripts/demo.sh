@@ -44,7 +44,10 @@ echo "== the same path drawn by the GPU-driven passes (chunk and tile selection,
 echo "== chunk meshes with POP levels of detail: the one-chunk anchors and $SCENE, then face sets and crack tests"
 "$VOXRAY" mesh-bench builtin:sphere30 builtin:terrain64 builtin:checker "$SCENE" --seconds 0.2 --json "$OUT/mesh.jsonl" 2>/dev/null
 "$VOXRAY" mesh builtin:terrain64 --level 2 --gltf "$OUT/terrain64_level2.glb" --ply "$OUT/terrain64_level2.ply" 2>/dev/null | tail -n 8
-"$VOXRAY" check "$SCENE" --mesh --mesh-views 1000 2>/dev/null | tail -n 1 || status=1
+echo "== $SCENE's chunk meshes drawn by the Vulkan raster path: level 0, then POP levels of detail (LOD bias 5)"
+"$VOXRAY" mesh "$SCENE" --png "$OUT/mesh_raster_level0.png" --width 960 --height 540 2>/dev/null | tail -n 1
+"$VOXRAY" mesh "$SCENE" --png "$OUT/mesh_raster_bias5.png" --lod-bias 5 --width 960 --height 540 2>/dev/null | tail -n 1
+"$VOXRAY" check "$SCENE" --mesh --mesh-views 1000 2>/dev/null | tail -n 2 || status=1
 echo "== moving entities: 3,000 deer and trees (shared models) over builtin:terrain:512, 6 frames of their motion (naadf, vulkan), then checked"
 /usr/bin/python3 "$ROOT/scripts/make_entity_scene.py" "$OUT/herd.json" --world builtin:terrain:512 --count 3000 \
     --extent 512 512 131 --data "${VOXRAY_DATA_DIR:-$ROOT/../shared/data}"
@@ -52,5 +55,5 @@ mkdir -p "$OUT/entities"
 "$VOXRAY" render "$OUT/herd.json" --frames 6 --structure naadf --backend vulkan --width 960 --height 540 \
     --out "$OUT/entities/frame.png" 2>/dev/null
 "$VOXRAY" check "$OUT/herd.json" --frames 2 --rays 20000 --backends cpu,vulkan 2>/dev/null | tail -n 5 || status=1
-echo "== images (entities/frame_*.png too), results.jsonl, mesh.jsonl, terrain64_level2.glb, plots (mrays.png, speed_vs_memory.png, steps.png) and table.md in $OUT"
+echo "== images (entities/frame_*.png too), results.jsonl, mesh.jsonl, terrain64_level2.glb, mesh_raster_*.png, plots (mrays.png, speed_vs_memory.png, steps.png) and table.md in $OUT"
 exit ${status}

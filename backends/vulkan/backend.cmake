@@ -17,8 +17,13 @@ find_program(VOXRAY_SPIRV_VAL spirv-val)
 
 set_property(GLOBAL PROPERTY VOXRAY_VULKAN_HEADERS "")
 
-# glslang, spirv-val (when present) and the header that embeds the SPIR-V words.
+# glslang, spirv-val (when present) and the header that embeds the SPIR-V words. An
+# optional fourth argument names the shader stage (comp when absent).
 function(voxray_vulkan_compile comp name defines)
+    set(stage comp)
+    if(ARGC GREATER 3)
+        set(stage ${ARGV3})
+    endif()
     set(dir ${CMAKE_CURRENT_FUNCTION_LIST_DIR})
     set(spv ${VOXRAY_GENERATED}/vulkan/${name}.spv)
     set(header ${VOXRAY_GENERATED}/voxray/generated/spirv_${name}.hpp)
@@ -27,7 +32,7 @@ function(voxray_vulkan_compile comp name defines)
         set(validate COMMAND ${VOXRAY_SPIRV_VAL} --target-env vulkan1.2 ${spv})
     endif()
     add_custom_command(OUTPUT ${header}
-        COMMAND ${Vulkan_GLSLANG_VALIDATOR_EXECUTABLE} -V --target-env vulkan1.2 -S comp ${defines} -o ${spv} ${comp}
+        COMMAND ${Vulkan_GLSLANG_VALIDATOR_EXECUTABLE} -V --target-env vulkan1.2 -S ${stage} ${defines} -o ${spv} ${comp}
         ${validate}
         COMMAND ${CMAKE_COMMAND} -DSPIRV=${spv} -DHEADER=${header} -DNAME=voxray_spirv_${name}
                 -P ${dir}/cmake/spirv_header.cmake
@@ -64,6 +69,15 @@ function(voxray_vulkan_finish)
         ${PROJECT_SOURCE_DIR}/include/voxray/kernels/prelude.h ${PROJECT_SOURCE_DIR}/include/voxray/sync/commit.h
         ${dir}/shaders/commit.glsl)
     voxray_vulkan_compile(${comp} commit "")
+    # The raster path of POP chunk meshes (voxray/vulkan/chunk_raster.hpp): a vertex and a
+    # fragment shader over the dialect and the vertex side of meshing/pop.h.
+    voxray_kernel_files(dialect_files meshing/pop.h)
+    foreach(stage vert frag)
+        set(source ${VOXRAY_GENERATED}/vulkan/chunk_raster_${stage}.glsl)
+        voxray_flatten(OUTPUT ${source} LINE_MARKERS FILES ${dir}/shaders/preamble.glsl ${dir}/shaders/dialect.glsl
+            ${dialect_files} ${dir}/shaders/chunk_raster_frame.glsl ${dir}/shaders/chunk_raster_${stage}.glsl)
+        voxray_vulkan_compile(${source} chunk_raster_${stage} "" ${stage})
+    endforeach()
     set(includes "")
     set(rows "")
     get_property(with_passes GLOBAL PROPERTY VOXRAY_VULKAN_PASSES)

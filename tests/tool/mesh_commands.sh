@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # The chunk mesher through the tool: check --mesh on built-in and real scenes (exit 0 and
 # "0 mismatches" last), mesh-bench rows with the keys the docs and the acceptance checks
-# read, and mesh's PLY and glTF exports holding the quads it reports.
+# read, mesh's PLY and glTF exports holding the quads it reports, and its pictures drawn by
+# the Vulkan raster path.
 # Usage: mesh_commands.sh TOOL DATA_DIR WORK_DIR
 set -euo pipefail
 tool=$1 data=$2 work=$3
@@ -13,6 +14,8 @@ for scene in builtin:terrain64 builtin:noise50 "$data/vox/minecraft_tree.vox"; d
     out=$("$tool" check "$scene" --mesh --mesh-views 300 2>/dev/null) || fail "check --mesh $scene: exit $?"
     last=$(tail -n 1 <<< "$out")
     [[ $last =~ ": 0 mismatches"$ ]] && echo "ok   $last" || fail "check --mesh $scene: last line '$last'"
+    raster=$(grep "^raster at level 0" <<< "$out" || true)
+    [[ $raster =~ "; 0 mismatches" ]] && echo "ok   $raster" || fail "check --mesh $scene: raster line '$raster'"
 done
 
 "$tool" mesh-bench builtin:sphere30 builtin:checker --seconds 0.02 --json "$work/mesh.jsonl" > /dev/null 2>&1 ||
@@ -54,6 +57,39 @@ triangles = doc["accessors"][doc["meshes"][0]["primitives"][0]["indices"]]["coun
 assert triangles == 2 * quads, (triangles, quads)
 print("ok   exports: %d quads in the PLY, %d triangles in the glTF" % (faces, triangles))
 PY
+
+# Pictures by the raster path: the size asked for, and fewer quads
+# at a coarser level of detail.
+for bias in 64 2; do
+    out=$("$tool" mesh builtin:terrain64 --png "$work/raster_$bias.png" --lod-bias $bias --width 200 --height 120 \
+        2>/dev/null) || fail "mesh --png: exit $?"
+    grep -o "[0-9]* quads at LOD bias $bias" <<< "$out" | cut -d' ' -f1 > "$work/quads_$bias" ||
+        fail "mesh --png $bias: no raster line in '$out'"
+done
+python3 - "$work/raster_64.png" "$work/quads_64" "$work/quads_2" <<'PY' || fail "mesh --png picture"
+import struct, sys, zlib
+data = open(sys.argv[1], "rb").read()
+assert data[:8] == b"\x89PNG\r\n\x1a\n", data[:8]
+width, height, depth, kind = struct.unpack(">IIBB", data[16:26])
+assert (width, height, depth, kind) == (200, 120, 8, 2), (width, height, depth, kind)
+idat, at = b"", 8
+while at < len(data):
+    size, tag = struct.unpack(">I4s", data[at:at + 8])
+    if tag == b"IDAT": idat += data[at + 8:at + 8 + size]
+    at += 12 + size
+rows = zlib.decompress(idat)
+assert len(rows) == height * (1 + 3 * width), len(rows)
+fine, coarse = int(open(sys.argv[2]).read()), int(open(sys.argv[3]).read())
+assert 0 < coarse < fine, (fine, coarse)
+print("ok   mesh --png: a 200 x 120 picture; %d quads drawn at level 0, %d at bias 2" % (fine, coarse))
+PY
+if "$tool" mesh builtin:terrain64 --png "$work/raster.xyz" > "$work/err.txt" 2>&1; then
+    fail "mesh --png raster.xyz: exit 0"
+elif grep -q -- "--png" "$work/err.txt"; then
+    echo "ok   mesh --png raster.xyz: $(tail -n 1 "$work/err.txt")"
+else
+    fail "mesh --png raster.xyz: '$(cat "$work/err.txt")'"
+fi
 
 echo "$failures case(s) failed"
 [[ $failures -eq 0 ]]

@@ -7,6 +7,7 @@
 
 #include "cli.hpp"
 #include "mesh_export.hpp"
+#include "mesh_raster.hpp"
 #include "mesh_scene.hpp"
 #include "output.hpp"
 #include "scene.hpp"
@@ -22,11 +23,13 @@ struct mesh_options {
     unsigned threads = 2;
     int level = 0;
     std::string ply, gltf, json;
+    raster_options raster;
 };
 
 int mesh(const mesh_options& o) {
-    for (auto* path : {&o.ply, &o.gltf, &o.json})
+    for (auto* path : {&o.ply, &o.gltf, &o.json, &o.raster.png})
         if (!path->empty()) require_writable(*path, "output");
+    if (!o.raster.png.empty()) require_image_path(o.raster.png, "--png");
     voxel_model model = load_scene(o.scene.scenes[0], o.scene);
     meshing::mesher_options options{.ambient_occlusion = o.ao};
     auto plain = mesh_scene(model, options, false, o.threads);
@@ -64,6 +67,7 @@ int mesh(const mesh_options& o) {
             std::printf("(%6d, %6d, %6d) %8llu %8u %s\n", m.origin.x, m.origin.y, m.origin.z,
                         (unsigned long long)covered_faces(m), m.quad_count(), drawn_text.c_str());
     }
+    if (!o.raster.png.empty()) write_raster_png(model, scene.meshes, o.raster);
     if (!o.ply.empty()) write_mesh_ply(o.ply, scene.meshes, model.palette(), o.level);
     if (!o.gltf.empty()) write_mesh_gltf(o.gltf, scene.meshes, model.palette(), o.level);
     if (!o.json.empty()) {
@@ -90,6 +94,14 @@ command add_mesh(CLI::App& parent) {
     app->add_option("--ply", o->ply, "write the quads drawn at --level to this PLY file");
     app->add_option("--gltf", o->gltf, "write them to this glTF 2.0 file (.glb: binary)");
     app->add_option("--json", o->json, "write the statistics to this JSON file");
+    app->add_option("--png", o->raster.png, "draw the meshes with the Vulkan raster path to this image");
+    app->add_option("--lod-bias", o->raster.lod_bias, "--png: t = log2(distance) - bias; 64 draws level 0 everywhere")
+        ->capture_default_str();
+    app->add_option("--width", o->raster.width, "--png: pixels")->check(CLI::Range(1, 16384))->capture_default_str();
+    app->add_option("--height", o->raster.height, "--png: pixels")->check(CLI::Range(1, 16384))->capture_default_str();
+    app->add_option("--view", o->raster.view, "--png: the camera, as voxray render --view")
+        ->check(CLI::Range(0, 7))
+        ->capture_default_str();
     return {app, [o] { return mesh(*o); }};
 }
 

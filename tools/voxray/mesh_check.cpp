@@ -4,12 +4,14 @@
 //  - closedness at every level of detail over all chunks, and the squashed-face pass
 //    leaving every plane's coverage as it was;
 //  - shared vertices and T-vertices after morphing over --mesh-views random views (a
-//    sample of at most 5,000 shared vertices and 20,000 T-junctions on large scenes).
+//    sample of at most 5,000 shared vertices and 20,000 T-junctions on large scenes);
+//  - the Vulkan raster path at level 0 against the ray tracer's primary hits (mesh_raster.hpp).
 #include "mesh_check.hpp"
 
 #include <algorithm>
 #include <cstdio>
 
+#include "mesh_raster.hpp"
 #include "mesh_scene.hpp"
 #include "voxray/check/mesh_cracks.hpp"
 #include "voxray/check/mesh_faces.hpp"
@@ -76,7 +78,8 @@ std::uint64_t check_mesh(const voxel_model& model, const mesh_check_options& o) 
                 "%llu T-vertices off their edge\n",
                 (unsigned long long)morphs.views, cases.shared.size(), all_shared, cases.t_junctions.size(), all_t,
                 (unsigned long long)morphs.split_vertices, (unsigned long long)morphs.t_vertices_off);
-    return canonical + order + open + coverage + morphs.split_vertices + morphs.t_vertices_off;
+    std::uint64_t raster = check_raster(model, meshes, o.raster_views);
+    return canonical + order + open + coverage + morphs.split_vertices + morphs.t_vertices_off + raster;
 }
 
 }  // namespace voxray::tool

@@ -9,6 +9,7 @@ namespace voxray::tool {
 
 struct mesh_check_options {
     int views = 10000;
+    int raster_views = 4;  // views of the raster comparison
     std::uint64_t seed = 1;
     unsigned threads = 2;
 };

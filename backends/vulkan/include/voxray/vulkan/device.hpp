@@ -53,6 +53,8 @@ struct candidate {
     std::uint32_t queue_family = 0;
     bool portability_subset = false;
     bool int64_atomics = false;  // shaderInt64 and shaderBufferInt64Atomics (the frame passes)
+    bool graphics = false;       // the queue family draws too (the raster path, chunk_raster.hpp)
+    bool indirect_draws = false; // multiDrawIndirect and drawIndirectFirstInstance (the same)
     std::string problem;
 };
 
@@ -105,6 +107,11 @@ public:
     // on a device voxray creates, wherever the device has them; never assumed of the
     // application's device, whose enabled features voxray cannot see.
     bool int64_atomics() const { return owns_ && chosen_.int64_atomics; }
+    // Whether the queue draws (the raster path of chunk meshes, voxray/vulkan/chunk_raster.hpp).
+    bool graphics() const { return chosen_.graphics; }
+    // Whether one vkCmdDrawIndirect may issue many draws whose first instance is not 0;
+    // like int64_atomics, never assumed of the application's device.
+    bool indirect_draws() const { return owns_ && chosen_.indirect_draws; }
     // Held around every vkQueueSubmit: the tracers sharing this context share its queue,
     // which Vulkan requires to be externally synchronized.
     std::mutex& queue_lock() const { return queue_lock_; }

@@ -33,9 +33,11 @@ VOXRAY_HOST_INLINE void buffer::create(const context& ctx, buffer_role role, boo
     info.sharingMode = VK_SHARING_MODE_EXCLUSIVE;
     switch (role) {
     case buffer_role::storage_upload:
-        // TRANSFER_SRC too: engine::download_blob copies the blob back (tests, diagnostics).
+        // TRANSFER_SRC too: engine::download_blob copies the blob back (tests, diagnostics);
+        // INDIRECT_BUFFER: the raster path's draw commands (vulkan/chunk_raster.hpp).
         info.usage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT |
-                     VK_BUFFER_USAGE_TRANSFER_DST_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT;
+                     VK_BUFFER_USAGE_TRANSFER_DST_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT |
+                     VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT;
         break;
     case buffer_role::storage_readback:
         info.usage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT |

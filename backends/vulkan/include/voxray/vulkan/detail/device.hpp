@@ -46,14 +46,22 @@ VOXRAY_HOST_INLINE candidate inspect(VkPhysicalDevice pd) {
     vkGetPhysicalDeviceQueueFamilyProperties(pd, &n, nullptr);
     std::vector<VkQueueFamilyProperties> families(n);
     vkGetPhysicalDeviceQueueFamilyProperties(pd, &n, families.data());
-    auto compute = std::find_if(families.begin(), families.end(), [](const VkQueueFamilyProperties& f) {
-        return (f.queueFlags & VK_QUEUE_COMPUTE_BIT) && f.queueCount > 0;
-    });
+    // A family that computes and draws where there is one (the raster path needs both on
+    // its queue), else any that computes.
+    auto with = [&](VkQueueFlags flags) {
+        return std::find_if(families.begin(), families.end(), [&](const VkQueueFamilyProperties& f) {
+            return (f.queueFlags & flags) == flags && f.queueCount > 0;
+        });
+    };
+    auto compute = with(VK_QUEUE_COMPUTE_BIT | VK_QUEUE_GRAPHICS_BIT);
+    if (compute == families.end()) compute = with(VK_QUEUE_COMPUTE_BIT);
     if (compute == families.end()) {
         c.problem = "has no compute queue";
         return c;
     }
     c.queue_family = std::uint32_t(compute - families.begin());
+    c.graphics = (compute->queueFlags & VK_QUEUE_GRAPHICS_BIT) != 0;
+    c.indirect_draws = features.features.multiDrawIndirect && features.features.drawIndirectFirstInstance;
     // The spec requires enabling VK_KHR_portability_subset where it exists (MoltenVK).
     c.portability_subset = has_extension(device_extensions(pd), "VK_KHR_portability_subset");
     return c;
@@ -171,6 +179,7 @@ VOXRAY_HOST_INLINE void context::borrow(const vulkan_user_device& user) {
         fail("vulkan: queue family ", user.queue_family, " of ", chosen_.properties.deviceName,
              " does not support compute");
     owns_ = false;
+    chosen_.graphics = (families[user.queue_family].queueFlags & VK_QUEUE_GRAPHICS_BIT) != 0;
     device_ = user.device;
     queue_ = user.queue;
     chosen_.queue_family = user.queue_family;
@@ -213,6 +222,8 @@ VOXRAY_HOST_INLINE void context::create_device() {
     v12.shaderBufferInt64Atomics = chosen_.int64_atomics ? VK_TRUE : VK_FALSE;
     VkPhysicalDeviceFeatures core{};
     core.shaderInt64 = chosen_.int64_atomics ? VK_TRUE : VK_FALSE;
+    core.multiDrawIndirect = chosen_.indirect_draws ? VK_TRUE : VK_FALSE;
+    core.drawIndirectFirstInstance = chosen_.indirect_draws ? VK_TRUE : VK_FALSE;
     auto info = vk_struct<VkDeviceCreateInfo>(VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO, &v12);
     info.pEnabledFeatures = &core;
     info.queueCreateInfoCount = 1;
