@@ -24,5 +24,10 @@ pictures=$(mktemp -d)
 for level in 0 1 2 3 4 5 6; do
     "$TOOL" mesh builtin:terrain64 --level "$level" --ply "$pictures/terrain64_$level.ply" > /dev/null 2>&1
 done
+echo "== minecraft_nether drawn by the Vulkan raster path: level 0, and POP levels of detail at LOD bias 4"
+for bias in 64 4; do
+    "$TOOL" mesh "$DATA/vox/minecraft_nether.vox" --png "$OUT/mesh_raster_bias$bias.png" --lod-bias "$bias" \
+        --width 640 --height 360 2>/dev/null | tail -n 1
+done
 /usr/bin/python3 scripts/mesh_table.py "$OUT/mesh_results.jsonl" --plies "$pictures" --out "$OUT" --doc docs/meshing.md
 rm -rf "$pictures"

@@ -35,6 +35,16 @@ def table(header, rows):
             r["bytes_per_quad"], r["ns_per_face"], r["pop_ns_per_quad"], r["us_median_ao"], r["mask_us"],
             r["overdraw_max"], r["overdraw_max_before_squashed"], r["chunks_per_s_1"], r["chunks_per_s"], r["thread_scaling"],
             peer["ms"], peer["sloppy_ms"]))
+    if all("pop_image_rmse" in p for r in rows for p in r["meshoptimizer"]):
+        out += ["", "Image error against the level-0 picture of the same chunks (RMS of 8-bit colour differences over "
+                "the covered pixels, one grey, 512 × 288, the Vulkan raster path): POP level / meshopt simplify / "
+                "simplifySloppy at the level's triangle count:", "",
+                "| scene | " + " | ".join("level %d" % p["level"] for p in rows[0]["meshoptimizer"]) + " |",
+                "|---|" + "---:|" * len(rows[0]["meshoptimizer"])]
+        for r in rows:
+            out.append("| %s | %s |" % (r["scene"], " | ".join(
+                "%.1f / %.1f / %.1f" % (p["pop_image_rmse"], p["image_rmse"], p["sloppy_image_rmse"])
+                for p in r["meshoptimizer"])))
     if all(r.get("remesh") for r in rows):
         out += ["", "Remeshing after edits (rounds of one random edit on the structure, then the chunks it can "
                 "change read through the structure's `read_box` and meshed again):", "",

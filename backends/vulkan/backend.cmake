@@ -69,14 +69,17 @@ function(voxray_vulkan_finish)
         ${PROJECT_SOURCE_DIR}/include/voxray/kernels/prelude.h ${PROJECT_SOURCE_DIR}/include/voxray/sync/commit.h
         ${dir}/shaders/commit.glsl)
     voxray_vulkan_compile(${comp} commit "")
-    # The raster path of POP chunk meshes (voxray/vulkan/chunk_raster.hpp): a vertex and a
-    # fragment shader over the dialect and the vertex side of meshing/pop.h.
+    # The raster paths (voxray/vulkan/chunk_raster.hpp, triangle_raster.hpp): a vertex and a
+    # fragment shader each, over the dialect, the vertex side of meshing/pop.h and the
+    # frame's push constants (shaders/raster_frame.glsl).
     voxray_kernel_files(dialect_files meshing/pop.h)
-    foreach(stage vert frag)
-        set(source ${VOXRAY_GENERATED}/vulkan/chunk_raster_${stage}.glsl)
-        voxray_flatten(OUTPUT ${source} LINE_MARKERS FILES ${dir}/shaders/preamble.glsl ${dir}/shaders/dialect.glsl
-            ${dialect_files} ${dir}/shaders/chunk_raster_frame.glsl ${dir}/shaders/chunk_raster_${stage}.glsl)
-        voxray_vulkan_compile(${source} chunk_raster_${stage} "" ${stage})
+    foreach(program chunk_raster triangle_raster)
+        foreach(stage vert frag)
+            set(source ${VOXRAY_GENERATED}/vulkan/${program}_${stage}.glsl)
+            voxray_flatten(OUTPUT ${source} LINE_MARKERS FILES ${dir}/shaders/preamble.glsl ${dir}/shaders/dialect.glsl
+                ${dialect_files} ${dir}/shaders/raster_frame.glsl ${dir}/shaders/${program}_${stage}.glsl)
+            voxray_vulkan_compile(${source} ${program}_${stage} "" ${stage})
+        endforeach()
     endforeach()
     set(includes "")
     set(rows "")

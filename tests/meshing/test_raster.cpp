@@ -1,10 +1,13 @@
 // The raster path of chunk meshes (voxray/vulkan/chunk_raster.hpp) on the Vulkan device
 // (lavapipe here): at level of detail 0 every pixel's voxel and face (the identity
 // attachment) equals the ray tracer's primary hit through that pixel's centre, except
-// where a voxel edge passes through the centre itself; culling changes no pixel; bad
-// sizes are refused with the numbers.
+// where a voxel edge passes through the centre itself; culling changes no pixel; fixed
+// levels draw their prefixes; triangles of the same quads draw the same picture; bad
+// input is refused with the numbers.
+#include <array>
 #include <cstdint>
 #include <cstdio>
+#include <cstdlib>
 #include <string>
 #include <vector>
 
@@ -18,11 +21,13 @@
 #include "voxray/io/vox_reader.hpp"
 #include "voxray/meshing/chunk_source.hpp"
 #include "voxray/meshing/mesher.hpp"
+#include "voxray/meshing/quad_corners.hpp"
 #include "voxray/meshing/squashed.hpp"
 #include "voxray/rays/camera.hpp"
 #include "voxray/rays/shading.hpp"
 #include "voxray/scenes/chunk_scenes.hpp"
 #include "voxray/vulkan/chunk_raster.hpp"
+#include "voxray/vulkan/triangle_raster.hpp"
 
 using namespace voxray;
 
@@ -173,4 +178,72 @@ TEST(chunk_raster, nearer_faces_hide_farther_ones) {
     const raster_pixel& centre = f.pixels[8 * 16 + 8];
     EXPECT_EQ(centre.face, VX_FACE_NEG_Z);
     EXPECT_EQ(centre.voxel.z, -40);
+}
+
+TEST(chunk_raster, fixed_levels_draw_their_prefixes_unmorphed) {
+    voxel_model model = test::blob_model(5, box3i{{-40, -40, -40}, {100, 60, 80}});
+    auto meshes = mesh_all(model);
+    chunk_rasterizer raster;
+    raster.upload(meshes, colours_of(model.palette()));
+    raster_view v{.cam = auto_camera(model.bounds(), model.up_axis), .width = 128, .height = 96, .lod_bias = 64.0f,
+                  .cull_faces = false};
+    raster_frame by_distance = raster.draw(v);
+    v.fixed_level = 0;
+    raster_frame fixed = raster.draw(v);
+    EXPECT_EQ(fixed.rgba, by_distance.rgba);
+    for (int level = 0; level < VX_MESH_LEVELS; ++level) {
+        v.fixed_level = level;
+        std::uint64_t expected = 0;
+        for (auto& m : meshes) expected += m.drawn(level);
+        EXPECT_EQ(raster.draw(v).quads, expected) << "level " << level;
+    }
+    v.fixed_level = VX_MESH_LEVELS;
+    EXPECT_THROW(raster.draw(v), error);
+}
+
+TEST(triangle_raster, triangles_of_the_quads_draw_the_same_picture) {
+    voxel_model model = test::blob_model(9, box3i{{-30, -30, -30}, {90, 50, 70}}, 12, 1);
+    auto meshes = mesh_all(model);
+    std::vector<float> positions;
+    std::vector<std::uint32_t> indices;
+    for (auto& m : meshes)
+        meshing::for_each_quad_at(m, 0, [&](std::uint32_t, const std::array<glm::ivec3, 4>& quad) {
+            auto base = std::uint32_t(positions.size() / 3);
+            for (auto& p : quad) positions.insert(positions.end(), {float(p.x), float(p.y), float(p.z)});
+            indices.insert(indices.end(), {base, base + 1, base + 2, base, base + 2, base + 3});
+        });
+    constexpr std::uint32_t grey = 0xFFB4B4B4u;
+    chunk_rasterizer quads;
+    quads.upload(meshes, std::vector<std::uint32_t>(palette::size, grey));
+    triangle_rasterizer triangles;
+    triangles.upload(positions, indices, grey);
+    raster_view v{.cam = auto_camera(model.bounds(), model.up_axis, 2), .width = 160, .height = 120,
+                  .lod_bias = 64.0f, .to_sun = sun_direction(model.up_axis)};
+    raster_frame a = quads.draw(v), b = triangles.draw(v);
+    EXPECT_EQ(b.triangles, indices.size() / 3);
+    std::uint64_t covered = 0, coverage_differs = 0, colour_differs = 0;
+    for (std::size_t i = 0; i < a.pixels.size(); ++i) {
+        bool in_a = a.rgba[4 * i + 3] != 0, in_b = b.rgba[4 * i + 3] != 0;
+        covered += in_a;
+        coverage_differs += in_a != in_b;
+        EXPECT_EQ(in_b, b.pixels[i].face == VX_FACE_INSIDE);
+        for (std::size_t k = 0; k < 3 && in_a && in_b; ++k)
+            colour_differs += std::abs(int(a.rgba[4 * i + k]) - int(b.rgba[4 * i + k])) > 2;
+    }
+    EXPECT_GT(covered, 2000u);
+    EXPECT_EQ(coverage_differs, 0u);
+    EXPECT_EQ(colour_differs, 0u);
+}
+
+TEST(triangle_raster, bad_meshes_are_errors) {
+    triangle_rasterizer raster;
+    std::vector<float> positions = {0, 0, 0, 1, 0, 0, 0, 1, 0};
+    try {
+        raster.upload(positions, std::vector<std::uint32_t>{0, 1, 3}, 0xFFFFFFFFu);
+        ADD_FAILURE() << "an index beyond the vertices was taken";
+    } catch (const error& e) {
+        EXPECT_NE(std::string(e.what()).find("index 2 is 3, beyond the 3 vertices"), std::string::npos) << e.what();
+    }
+    EXPECT_THROW(raster.upload(positions, std::vector<std::uint32_t>{0, 1}, 0u), error);
+    EXPECT_THROW(raster.draw({.cam = look_at({0, 0, -5}, {0, 0, 0}), .width = 8, .height = 8}), error);
 }

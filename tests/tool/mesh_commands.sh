@@ -37,7 +37,13 @@ for r in rows:  # remeshing after edits, on both editable structures
         f = r["remesh"][structure]
         assert f["edits"] == 20 and f["chunks_per_edit"] >= 1 and f["remesh_us_per_chunk_median"] > 0, (structure, f)
         assert f["read_us_median"] > 0, (structure, f)
-print("ok   mesh-bench: %d rows with every key" % len(rows))
+for r in rows:  # the peer's image error beside the POP levels' (the Vulkan raster path)
+    levels = r["meshoptimizer"]
+    for p in levels:
+        for key in ("pop_image_rmse", "image_rmse", "sloppy_image_rmse"):
+            assert 0 <= p[key] < 256, (r["scene"], p)
+    assert 0 < levels[0]["pop_image_rmse"] < levels[-1]["pop_image_rmse"], (r["scene"], levels)
+print("ok   mesh-bench: %d rows with every key, image errors growing from level 1 to 6" % len(rows))
 PY
 
 out=$("$tool" mesh builtin:sphere30 --ply "$work/sphere.ply" --gltf "$work/sphere.glb" 2>/dev/null) || fail "mesh: exit $?"

@@ -133,7 +133,7 @@ nlohmann::json bench_scene(const std::string& spec, const mesh_bench_options& o)
     // The peer on up to 8 of the chunks: meshoptimizer at each POP level's triangle count.
     std::vector<meshing::chunk_mesh> peer_input(before.begin(), before.begin() + std::ptrdiff_t(std::min<std::size_t>(8, before.size())));
     std::fprintf(stderr, "meshoptimizer on %zu chunk(s) ...\n", peer_input.size());
-    nlohmann::json peer = meshoptimizer_levels(peer_input);
+    nlohmann::json peer = meshoptimizer_levels(peer_input, model.up_axis);
 
     std::fprintf(stderr, "remeshing after %d edits on the brickmap and NAADF ...\n", o.edits);
     nlohmann::json remesh = remesh_figures(model, o.edits);

@@ -5,7 +5,7 @@
 #include <tiny_gltf.h>
 
 #include "output.hpp"
-#include "voxray/meshing/pop.hpp"
+#include "voxray/meshing/quad_corners.hpp"
 #include "voxray/scenes/noise.hpp"
 
 namespace voxray::tool {
@@ -23,23 +23,19 @@ struct flat_mesh {
 
 flat_mesh flatten(const std::vector<meshing::chunk_mesh>& meshes, const palette& colours, int level) {
     flat_mesh out;
-    const int mask = ~((1 << level) - 1);
     for (auto& m : meshes)
-        for (int face = 0; face < VX_MESH_FACES; ++face)
-            for (std::uint32_t i = m.face_begin(face); i < m.face_end(face, level); ++i) {
-                std::uint32_t w0 = m.words[2 * i], w1 = m.words[2 * i + 1];
-                rgba c = colours[std::uint8_t(VX_MESH_MATERIAL(w1))].colour;
-                if (!c.r && !c.g && !c.b) {
-                    auto h = scenes::mix64(VX_MESH_MATERIAL(w1) + 1);
-                    c = {std::uint8_t(64 + (h & 127)), std::uint8_t(64 + ((h >> 8) & 127)), std::uint8_t(64 + ((h >> 16) & 127)), 255};
-                }
-                for (int k = 0; k < 4; ++k) {
-                    int corner = VX_MESH_POSITIVE(face) ? k : 3 - k;
-                    glm::ivec3 p = meshing::quad_corner(w0, w1, corner, m.origin) & mask;
-                    out.positions.insert(out.positions.end(), {float(p.x), float(p.y), float(p.z)});
-                    out.colours.insert(out.colours.end(), {c.r, c.g, c.b, 255});
-                }
+        meshing::for_each_quad_at(m, level, [&](std::uint32_t i, const std::array<glm::ivec3, 4>& corners) {
+            std::uint32_t material = VX_MESH_MATERIAL(m.words[2 * i + 1]);
+            rgba c = colours[std::uint8_t(material)].colour;
+            if (!c.r && !c.g && !c.b) {
+                auto h = scenes::mix64(material + 1);
+                c = {std::uint8_t(64 + (h & 127)), std::uint8_t(64 + ((h >> 8) & 127)), std::uint8_t(64 + ((h >> 16) & 127)), 255};
             }
+            for (const glm::ivec3& p : corners) {
+                out.positions.insert(out.positions.end(), {float(p.x), float(p.y), float(p.z)});
+                out.colours.insert(out.colours.end(), {c.r, c.g, c.b, 255});
+            }
+        });
     return out;
 }
 

@@ -4,7 +4,8 @@
 
 #include <meshoptimizer.h>
 
-#include "voxray/meshing/pop.hpp"
+#include "mesh_raster.hpp"
+#include "voxray/meshing/quad_corners.hpp"
 
 namespace voxray::tool {
 
@@ -20,15 +21,11 @@ struct indexed_mesh {
 indexed_mesh level_zero(const meshing::chunk_mesh& m) {
     std::vector<float> corners;
     std::vector<unsigned> indices;
-    for (std::uint32_t i = 0; i < m.quad_count(); ++i) {
+    meshing::for_each_quad_at(m, 0, [&](std::uint32_t, const std::array<glm::ivec3, 4>& quad) {
         unsigned base = unsigned(corners.size() / 3);
-        for (int k = 0; k < 4; ++k) {
-            int corner = VX_MESH_POSITIVE(VX_MESH_FACE(m.words[2 * i + 1])) ? k : 3 - k;
-            glm::ivec3 p = meshing::quad_corner(m.words[2 * i], m.words[2 * i + 1], corner, m.origin);
-            corners.insert(corners.end(), {float(p.x), float(p.y), float(p.z)});
-        }
+        for (const glm::ivec3& p : quad) corners.insert(corners.end(), {float(p.x), float(p.y), float(p.z)});
         indices.insert(indices.end(), {base, base + 1, base + 2, base, base + 2, base + 3});
-    }
+    });
     std::vector<unsigned> remap(corners.size() / 3);
     std::size_t vertices = meshopt_generateVertexRemap(remap.data(), indices.data(), indices.size(), corners.data(),
                                                        corners.size() / 3, 3 * sizeof(float));
@@ -40,15 +37,28 @@ indexed_mesh level_zero(const meshing::chunk_mesh& m) {
     return out;
 }
 
+// Every chunk's simplified triangles as one mesh over all chunks' vertices (for a picture).
+struct joined_mesh {
+    std::vector<float> positions;
+    std::vector<std::uint32_t> indices;
+    void add(const indexed_mesh& chunk, const std::vector<unsigned>& chunk_indices, std::size_t count) {
+        auto base = std::uint32_t(positions.size() / 3);
+        positions.insert(positions.end(), chunk.positions.begin(), chunk.positions.end());
+        for (std::size_t i = 0; i < count; ++i) indices.push_back(base + chunk_indices[i]);
+    }
+};
+
 }  // namespace
 
-nlohmann::json meshoptimizer_levels(const std::vector<meshing::chunk_mesh>& meshes) {
+nlohmann::json meshoptimizer_levels(const std::vector<meshing::chunk_mesh>& meshes, int up_axis) {
     nlohmann::json levels = nlohmann::json::array();
     std::vector<indexed_mesh> inputs;
     for (auto& m : meshes) inputs.push_back(level_zero(m));
+    level_images images(meshes, up_axis);
     for (int level = 1; level < VX_MESH_LEVELS; ++level) {
         std::uint64_t target = 0, reached = 0, reached_sloppy = 0;
         double seconds = 0, seconds_sloppy = 0, worst_error = 0, worst_error_sloppy = 0;
+        joined_mesh simplified, sloppy;
         for (std::size_t c = 0; c < meshes.size(); ++c) {
             const auto& in = inputs[c];
             std::size_t target_indices = std::size_t(meshes[c].drawn(level)) * 6;
@@ -60,16 +70,24 @@ nlohmann::json meshoptimizer_levels(const std::vector<meshing::chunk_mesh>& mesh
             seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
             target += target_indices / 3, reached += got / 3;
             worst_error = std::max(worst_error, double(error));
+            simplified.add(in, out, got);
             start = std::chrono::steady_clock::now();
             got = meshopt_simplifySloppy(out.data(), in.indices.data(), in.indices.size(), in.positions.data(),
                                          in.positions.size() / 3, 3 * sizeof(float), target_indices, 1.0f, &error);
             seconds_sloppy += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
             reached_sloppy += got / 3;
             worst_error_sloppy = std::max(worst_error_sloppy, double(error));
+            sloppy.add(in, out, got);
         }
-        levels.push_back({{"level", level}, {"target_triangles", target}, {"triangles", reached}, {"ms", seconds * 1e3},
-                          {"error", worst_error}, {"sloppy_triangles", reached_sloppy}, {"sloppy_ms", seconds_sloppy * 1e3},
-                          {"sloppy_error", worst_error_sloppy}});
+        nlohmann::json row = {{"level", level}, {"target_triangles", target}, {"triangles", reached},
+                              {"ms", seconds * 1e3}, {"error", worst_error}, {"sloppy_triangles", reached_sloppy},
+                              {"sloppy_ms", seconds_sloppy * 1e3}, {"sloppy_error", worst_error_sloppy}};
+        if (images.available()) {
+            row["pop_image_rmse"] = images.pop_rmse(level);
+            row["image_rmse"] = images.triangles_rmse(simplified.positions, simplified.indices);
+            row["sloppy_image_rmse"] = images.triangles_rmse(sloppy.positions, sloppy.indices);
+        }
+        levels.push_back(row);
     }
     return levels;
 }

@@ -1,6 +1,7 @@
 // See mesh_raster.hpp.
 #include "mesh_raster.hpp"
 
+#include <cmath>
 #include <cstdio>
 
 #include "image_writer.hpp"
@@ -13,6 +14,7 @@
 #include "voxray/cpu.hpp"
 #include "voxray/dense_grid/dense_grid.hpp"
 #include "voxray/vulkan/chunk_raster.hpp"
+#include "voxray/vulkan/triangle_raster.hpp"
 #endif
 
 namespace voxray::tool {
@@ -79,7 +81,70 @@ std::uint64_t check_raster(const voxel_model& model, const std::vector<meshing::
     return mismatches;
 }
 
+namespace {
+
+// Pixels either picture covers, and the RMS of their colour differences (8-bit units).
+double rmse(const raster_frame& a, const raster_frame& b) {
+    double sum = 0;
+    std::uint64_t covered = 0;
+    for (std::size_t i = 0; i < a.pixels.size(); ++i) {
+        if (a.rgba[4 * i + 3] == 0 && b.rgba[4 * i + 3] == 0) continue;
+        ++covered;
+        for (std::size_t k = 0; k < 3; ++k) {
+            double d = double(a.rgba[4 * i + k]) - double(b.rgba[4 * i + k]);
+            sum += d * d;
+        }
+    }
+    return covered ? std::sqrt(sum / (3.0 * double(covered))) : 0.0;
+}
+
+constexpr std::uint32_t grey = 0xFFB4B4B4u;
+
+}  // namespace
+
+struct level_images::state {
+    chunk_rasterizer chunks;
+    triangle_rasterizer triangles;
+    raster_view view;
+    raster_frame level0;
+};
+
+level_images::level_images(const std::vector<meshing::chunk_mesh>& meshes, int up_axis) : state_(new state) {
+    box3i bounds{glm::ivec3(0), glm::ivec3(0)};
+    for (std::size_t i = 0; i < meshes.size(); ++i) {
+        box3i chunk{meshes[i].origin, meshes[i].origin + VX_MESH_CHUNK_EDGE};
+        bounds = i ? box3i{glm::min(bounds.min, chunk.min), glm::max(bounds.max, chunk.max)} : chunk;
+    }
+    std::vector<std::uint32_t> colours(1u << 16, grey);
+    state_->chunks.upload(meshes, colours);
+    state_->view = {.cam = auto_camera(bounds, up_axis), .width = 512, .height = 288, .fixed_level = 0,
+                    .to_sun = sun_direction(up_axis)};
+    state_->level0 = state_->chunks.draw(state_->view);
+}
+
+level_images::~level_images() = default;
+
+bool level_images::available() const { return true; }
+
+double level_images::pop_rmse(int level) {
+    raster_view v = state_->view;
+    v.fixed_level = level;
+    return rmse(state_->chunks.draw(v), state_->level0);
+}
+
+double level_images::triangles_rmse(std::span<const float> positions, std::span<const std::uint32_t> indices) {
+    state_->triangles.upload(positions, indices, grey);
+    return rmse(state_->triangles.draw(state_->view), state_->level0);
+}
+
 #else
+
+struct level_images::state {};
+level_images::level_images(const std::vector<meshing::chunk_mesh>&, int) {}
+level_images::~level_images() = default;
+bool level_images::available() const { return false; }
+double level_images::pop_rmse(int) { return NAN; }
+double level_images::triangles_rmse(std::span<const float>, std::span<const std::uint32_t>) { return NAN; }
 
 void write_raster_png(const voxel_model&, const std::vector<meshing::chunk_mesh>&, const raster_options&) {
     fail("--png draws with the Vulkan backend, which this voxray was built without");

@@ -3,6 +3,8 @@
 // compares level 0 with the ray tracer's primary hits. Both need the Vulkan backend.
 #pragma once
 #include <cstdint>
+#include <memory>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -25,5 +27,23 @@ void write_raster_png(const voxel_model& model, const std::vector<meshing::chunk
 // Level 0 from `views` views against the dense grid's primary hits: the differing pixels
 // off the picture's edges plus those beyond 0.5 % of the covered ones (printed).
 std::uint64_t check_raster(const voxel_model& model, const std::vector<meshing::chunk_mesh>& meshes, int views);
+
+// Image error of coarser meshes against the level-0 picture of the same chunks, one view
+// (auto_camera's first, 512 x 288), all in one grey so that only the geometry differs:
+// RMS difference of the 8-bit colours over the pixels either picture covers (an empty
+// pixel counts as black). For the POP levels and for meshes of other tools (meshoptimizer's
+// simplifications in mesh-bench). Without the Vulkan backend available() is false.
+class level_images {
+public:
+    level_images(const std::vector<meshing::chunk_mesh>& meshes, int up_axis);
+    ~level_images();
+    bool available() const;
+    double pop_rmse(int level);
+    double triangles_rmse(std::span<const float> positions, std::span<const std::uint32_t> indices);
+
+private:
+    struct state;
+    std::unique_ptr<state> state_;
+};
 
 }  // namespace voxray::tool

@@ -1,8 +1,6 @@
 // Colour and identity of a chunk quad's pixel. The identity (attachment 1) is the voxel and
 // face drawn there, which at level of detail 0 is what the ray tracer's primary hit
 // reports for the same pixel: the voxel is the unit cell half a voxel behind the face.
-// The colour is the palette colour lit like voxray::shade (rays/shading.hpp) without
-// shadows, gamma-encoded like voxray::to_srgb8.
 layout(location = 0) in vec3 vx_world;
 layout(location = 1) flat in uint vx_face_material;
 layout(location = 0) out vec4 vx_colour;
@@ -13,9 +11,5 @@ void main() {
     vec3 normal = vec3(0.0);
     normal[VX_MESH_NORMAL_AXIS(face)] = VX_MESH_POSITIVE(face) ? 1.0 : -1.0;
     vx_identity = ivec4(ivec3(floor(vx_world - 0.5 * normal)), int(face));
-    uint material = VX_MESH_MATERIAL(vx_face_material);
-    uint c = material < frame.colour_count ? vx_raster_colours(frame.colours).c[material] : 0xFFFF00FFu;
-    vec3 albedo = vec3(float(c & 255u), float((c >> 8) & 255u), float((c >> 16) & 255u)) / 255.0;
-    float lambert = max(0.0, dot(normal, frame.sun.xyz));
-    vx_colour = vec4(pow(albedo * (0.3 + 0.7 * lambert), vec3(1.0 / 2.2)), 1.0);
+    vx_colour = vx_raster_shade(VX_MESH_MATERIAL(vx_face_material), normal);
 }

@@ -3,6 +3,9 @@
 // first instance is the chunk's index, which finds the chunk's origin. The corner comes
 // from meshing/pop.h's vx_mesh_corner and the morph from vx_pop_vertex, the sources the
 // CPU reference compiles too.
+layout(buffer_reference, std430, buffer_reference_align = 8) readonly buffer vx_raster_quads { uvec2 q[]; };
+layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer vx_raster_origins { ivec4 o[]; };
+
 layout(location = 0) out vec3 vx_world;              // the morphed position
 layout(location = 1) flat out uint vx_face_material;  // the quad's word 1
 
@@ -12,15 +15,20 @@ void main() {
     const uint positive_order[6] = uint[6](0u, 1u, 2u, 0u, 2u, 3u);
     const uint negative_order[6] = uint[6](0u, 2u, 1u, 0u, 3u, 2u);
     uint quad = uint(gl_VertexIndex) / 6u, slot = uint(gl_VertexIndex) % 6u;
-    uvec2 q = vx_raster_quads(frame.quads).q[quad];
-    ivec4 origin = vx_raster_origins(frame.origins).o[gl_InstanceIndex];
+    uvec2 q = vx_raster_quads(frame.data[0]).q[quad];
+    ivec4 origin = vx_raster_origins(frame.data[1]).o[gl_InstanceIndex];
     uint corner = VX_MESH_POSITIVE(VX_MESH_FACE(q.y)) ? positive_order[slot] : negative_order[slot];
     int x, y, z;
     vx_mesh_corner(q.x, q.y, corner, origin.x, origin.y, origin.z, x, y, z);
-    float px, py, pz;
     vec4 eb = frame.eye_and_bias;
-    vx_pop_vertex(x, y, z, eb.x, eb.y, eb.z, eb.w, px, py, pz);
-    vx_world = vec3(px, py, pz);
+    if (frame.fixed_level == VX_RASTER_BY_DISTANCE) {
+        float px, py, pz;
+        vx_pop_vertex(x, y, z, eb.x, eb.y, eb.z, eb.w, px, py, pz);
+        vx_world = vec3(px, py, pz);
+    } else {
+        int level = int(frame.fixed_level);
+        vx_world = vec3(float(vx_pop_round(x, level)), float(vx_pop_round(y, level)), float(vx_pop_round(z, level)));
+    }
     // Relative to the eye before the projection: world coordinates of thousands keep
     // their precision where it matters, near the camera.
     gl_Position = frame.view_projection * vec4(vx_world - eb.xyz, 1.0);

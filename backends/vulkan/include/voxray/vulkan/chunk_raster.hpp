@@ -15,12 +15,9 @@
 // with meshing/pop.h, so the geometry is the CPU reference's bit for bit.
 #pragma once
 #include <array>
-#include <chrono>
-#include <cmath>
 #include <cstdint>
 #include <cstring>
 #include <limits>
-#include <memory>
 #include <span>
 #include <string>
 #include <vector>
@@ -30,65 +27,27 @@
 #include <vulkan/vulkan.h>
 
 #include "voxray/core/error.hpp"
-#include "voxray/core/ray_hit_layout.h"
+#include "voxray/generated/spirv_chunk_raster_frag.hpp"
+#include "voxray/generated/spirv_chunk_raster_vert.hpp"
 #include "voxray/meshing/chunk_mesh.hpp"
 #include "voxray/meshing/pop.hpp"
-#include "voxray/meshing/raster_pixel.hpp"
 #include "voxray/rays/camera.hpp"
 #include "voxray/vulkan/buffer.hpp"
 #include "voxray/vulkan/commands.hpp"
-#include "voxray/vulkan/device.hpp"
-#include "voxray/vulkan/kernel_timer.hpp"
 #include "voxray/vulkan/options.hpp"
+#include "voxray/vulkan/raster_canvas.hpp"
 #include "voxray/vulkan/raster_pipeline.hpp"
-#include "voxray/vulkan/raster_targets.hpp"
 
 namespace voxray {
-
-struct raster_view {
-    camera cam;
-    int width = 0, height = 0;
-    // meshing/pop.h's t = log2(distance) - lod_bias: larger is finer; 64 draws level 0 everywhere.
-    float lod_bias = 0.0f;
-    glm::vec3 to_sun{0.0f, 1.0f, 0.0f};  // unit length; lights like voxray::shade
-    bool cull_faces = true;              // skip a chunk's face directions that face away
-};
-
-struct raster_frame {
-    int width = 0, height = 0;
-    std::vector<std::uint8_t> rgba;    // rows top to bottom; alpha 0 where nothing was drawn
-    std::vector<raster_pixel> pixels;  // the identity attachment, same order
-    std::uint64_t quads = 0;           // quads drawn
-    std::uint32_t draws = 0;           // (chunk, face direction) ranges drawn
-    std::uint32_t culled = 0;          // ranges skipped: facing away or behind the eye
-    double gpu_ms = NAN;               // the render pass on the device (GPU timestamps)
-    double ms = 0;                     // recording, submission and read-back, on the host
-};
 
 class chunk_rasterizer {
 public:
     explicit chunk_rasterizer(const vulkan_options& options = {})
-        : ctx_(vulkan_detail::shared_context(options)), commands_(*ctx_), timer_(*ctx_) {
-        if (!ctx_->graphics())
-            fail("vulkan: the queue voxray uses on ", ctx_->name(),
-                 " cannot draw (its family has no VK_QUEUE_GRAPHICS_BIT); the raster path needs one");
-        pass_ = vulkan_detail::create_raster_pass(ctx_->device());
-        try {
-            pipeline_ = std::make_unique<vulkan_detail::raster_pipeline>(ctx_->device(), pass_);
-        } catch (...) {
-            vkDestroyRenderPass(ctx_->device(), pass_, nullptr);
-            throw;
-        }
-    }
-    ~chunk_rasterizer() {
-        targets_.reset();
-        pipeline_.reset();
-        vkDestroyRenderPass(ctx_->device(), pass_, nullptr);
-    }
-    chunk_rasterizer(const chunk_rasterizer&) = delete;
-    chunk_rasterizer& operator=(const chunk_rasterizer&) = delete;
+        : canvas_(options),
+          pipeline_(canvas_.ctx().device(), canvas_.pass(), voxray_spirv_chunk_raster_vert,
+                    voxray_spirv_chunk_raster_frag) {}
 
-    std::string device_name() const { return ctx_->name(); }
+    std::string device_name() const { return canvas_.ctx().name(); }
 
     // The chunks to draw (replacing any before) and the colour of each material, RGBA8
     // (r in the low byte); a material past the end draws magenta.
@@ -106,66 +65,39 @@ public:
         if (quads > most)
             fail("vulkan: ", quads, " quads are more than one raster upload draws (at most ", most,
                  ": vertex indices are 32-bit, 6 a quad)");
-        quads_ = filled(words.data(), words.size() * sizeof(std::uint32_t), "chunk quads");
-        origins_ = filled(origins.data(), origins.size() * sizeof(origins[0]), "chunk origins");
-        colours_ = filled(colours.data(), colours.size_bytes(), "material colours");
+        quads_ = canvas_.filled(words.data(), words.size() * sizeof(std::uint32_t), "chunk quads");
+        origins_ = canvas_.filled(origins.data(), origins.size() * sizeof(origins[0]), "chunk origins");
+        colours_ = canvas_.filled(colours.data(), colours.size_bytes(), "material colours");
         colour_count_ = std::uint32_t(colours.size());
+        const auto& ctx = canvas_.ctx();
         VkDeviceSize commands = VkDeviceSize(std::max<std::size_t>(chunks_.size(), 1)) * VX_MESH_FACES *
                                 sizeof(VkDrawIndirectCommand);
-        indirect_ = vulkan_detail::buffer(*ctx_, commands, vulkan_detail::buffer_role::storage_upload, true,
+        indirect_ = vulkan_detail::buffer(ctx, commands, vulkan_detail::buffer_role::storage_upload, true,
                                           "raster draw commands");
         indirect_staging_ = {};
         if (!indirect_.mapped())
-            indirect_staging_ = vulkan_detail::buffer(*ctx_, commands, vulkan_detail::buffer_role::staging_upload,
-                                                      false, "raster draw commands (staging)");
+            indirect_staging_ = vulkan_detail::buffer(ctx, commands, vulkan_detail::buffer_role::staging_upload, false,
+                                                      "raster draw commands (staging)");
     }
 
     raster_frame draw(const raster_view& view) {
-        auto start = std::chrono::steady_clock::now();
         if (!quads_.handle()) fail("chunk_rasterizer::draw: no chunks uploaded (call upload first)");
-        if (view.width <= 0 || view.height <= 0)
-            fail("chunk_rasterizer::draw: a frame of ", view.width, " x ", view.height, " pixels");
-        vulkan_detail::check_raster_size(*ctx_, std::uint32_t(view.width), std::uint32_t(view.height));
-        if (!targets_ || targets_->width() != std::uint32_t(view.width) ||
-            targets_->height() != std::uint32_t(view.height)) {
-            targets_.reset();
-            targets_ = std::make_unique<vulkan_detail::raster_targets>(*ctx_, pass_, std::uint32_t(view.width),
-                                                                      std::uint32_t(view.height));
-        }
         raster_frame frame;
-        frame.width = view.width, frame.height = view.height;
-        camera_frame basis(view.cam, view.width, view.height);
-        std::vector<VkDrawIndirectCommand> list = draw_list(view, basis, frame);
-
-        VkCommandBuffer cmd = commands_.begin();
-        if (!list.empty()) write_commands(cmd, list);
-        timer_.start(cmd);
-        VkClearValue clears[3]{};
-        clears[1].color.int32[3] = std::int32_t(VX_FACE_NONE);
-        clears[2].depthStencil = {0.0f, 0};  // reversed depth: 0 is infinitely far
-        auto begin = vulkan_detail::vk_struct<VkRenderPassBeginInfo>(VK_STRUCTURE_TYPE_RENDER_PASS_BEGIN_INFO);
-        begin.renderPass = pass_;
-        begin.framebuffer = targets_->framebuffer();
-        begin.renderArea.extent = {std::uint32_t(view.width), std::uint32_t(view.height)};
-        begin.clearValueCount = 3;
-        begin.pClearValues = clears;
-        vkCmdBeginRenderPass(cmd, &begin, VK_SUBPASS_CONTENTS_INLINE);
-        VkViewport viewport{0.0f, 0.0f, float(view.width), float(view.height), 0.0f, 1.0f};
-        VkRect2D scissor{{0, 0}, {std::uint32_t(view.width), std::uint32_t(view.height)}};
-        vkCmdSetViewport(cmd, 0, 1, &viewport);
-        vkCmdSetScissor(cmd, 0, 1, &scissor);
-        pipeline_->bind(cmd, push(view, basis));
-        if (ctx_->indirect_draws() && !list.empty())
-            vkCmdDrawIndirect(cmd, indirect_.handle(), 0, std::uint32_t(list.size()), sizeof(VkDrawIndirectCommand));
-        else
-            for (const auto& c : list) vkCmdDraw(cmd, c.vertexCount, 1, c.firstVertex, c.firstInstance);
-        vkCmdEndRenderPass(cmd);
-        timer_.stop(cmd);
-        targets_->record_copies(cmd);
-        commands_.submit_and_wait();
-        frame.gpu_ms = timer_.seconds() * 1e3;
-        read_back(frame);
-        frame.ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+        std::vector<VkDrawIndirectCommand> list = draw_list(view, frame);
+        vulkan_detail::raster_push push = vulkan_detail::raster_canvas::camera_push(view);
+        push.data[0] = quads_.address(), push.data[1] = origins_.address(), push.data[2] = colours_.address();
+        push.colour_count = colour_count_;
+        bool indirect = canvas_.ctx().indirect_draws() && !list.empty();
+        canvas_.render(
+            view, frame, [&](VkCommandBuffer cmd) { if (indirect) write_commands(cmd, list); },
+            [&](VkCommandBuffer cmd) {
+                pipeline_.bind(cmd, push);
+                if (indirect)
+                    vkCmdDrawIndirect(cmd, indirect_.handle(), 0, std::uint32_t(list.size()),
+                                      sizeof(VkDrawIndirectCommand));
+                else
+                    for (const auto& c : list) vkCmdDraw(cmd, c.vertexCount, 1, c.firstVertex, c.firstInstance);
+            });
         return frame;
     }
 
@@ -176,29 +108,12 @@ private:
         std::array<std::uint32_t, VX_MESH_TABLE_ENTRIES> table;
     };
 
-    vulkan_detail::buffer filled(const void* data, std::size_t bytes, const char* what) {
-        VkDeviceSize size = std::max<VkDeviceSize>(bytes, 16);  // no buffer of 0 bytes
-        vulkan_detail::buffer b(*ctx_, size, vulkan_detail::buffer_role::storage_upload, true, what);
-        if (bytes == 0) return b;
-        if (b.mapped()) {
-            std::memcpy(b.mapped(), data, bytes);
-            return b;
-        }
-        vulkan_detail::buffer staging(*ctx_, size, vulkan_detail::buffer_role::staging_upload, false, what);
-        std::memcpy(staging.mapped(), data, bytes);
-        VkCommandBuffer cmd = commands_.begin();
-        VkBufferCopy region{0, 0, bytes};
-        vkCmdCopyBuffer(cmd, staging.handle(), b.handle(), 1, &region);
-        commands_.submit_and_wait();
-        return b;
-    }
-
     // One range per (chunk, face direction) left after culling.
-    std::vector<VkDrawIndirectCommand> draw_list(const raster_view& view, const camera_frame& basis,
-                                                 raster_frame& frame) const {
+    std::vector<VkDrawIndirectCommand> draw_list(const raster_view& view, raster_frame& frame) const {
         std::vector<VkDrawIndirectCommand> list;
         meshing::pop_view pop{view.cam.position, view.lod_bias};
         glm::vec3 eye = view.cam.position;
+        glm::vec3 forward = camera_frame(view.cam, 1, 1).forward;
         for (std::size_t i = 0; i < chunks_.size(); ++i) {
             const chunk_entry& c = chunks_[i];
             glm::vec3 lo(c.origin), hi = lo + float(VX_MESH_CHUNK_EDGE);
@@ -206,9 +121,9 @@ private:
             bool behind = view.cull_faces;
             for (int k = 0; k < 8 && behind; ++k) {
                 glm::vec3 corner((k & 1) ? hi.x : lo.x, (k & 2) ? hi.y : lo.y, (k & 4) ? hi.z : lo.z);
-                behind = glm::dot(corner - eye, basis.forward) < 0.0f;
+                behind = glm::dot(corner - eye, forward) < 0.0f;
             }
-            int level = meshing::chunk_draw_level(c.origin, pop);
+            int level = view.fixed_level >= 0 ? view.fixed_level : meshing::chunk_draw_level(c.origin, pop);
             for (int f = 0; f < VX_MESH_FACES; ++f) {
                 std::uint32_t begin = f ? c.table[VX_MESH_TABLE_END(f - 1, 0)] : 0u;
                 std::uint32_t end = c.table[VX_MESH_TABLE_END(f, level)];
@@ -221,6 +136,7 @@ private:
                 frame.quads += end - begin;
             }
         }
+        frame.triangles = 2 * frame.quads;
         frame.draws = std::uint32_t(list.size());
         return list;
     }
@@ -249,43 +165,8 @@ private:
                                                VK_ACCESS_INDIRECT_COMMAND_READ_BIT);
     }
 
-    // The camera as a clip-space matrix over eye-relative positions: x and y through the
-    // pixel centres exactly as camera_frame::pixel aims its rays (Vulkan's framebuffer y
-    // points down), and reversed depth near / distance along the view, with no far plane.
-    vulkan_detail::raster_push push(const raster_view& view, const camera_frame& b) const {
-        constexpr float near = 0.05f;
-        vulkan_detail::raster_push p{};
-        for (int c = 0; c < 3; ++c) {
-            p.view_projection[4 * c + 0] = b.right[c] / b.half_w;
-            p.view_projection[4 * c + 1] = -b.up[c] / b.half_h;
-            p.view_projection[4 * c + 2] = 0.0f;
-            p.view_projection[4 * c + 3] = b.forward[c];
-        }
-        p.view_projection[14] = near;  // column 3, row 2
-        p.eye_and_bias[0] = view.cam.position.x, p.eye_and_bias[1] = view.cam.position.y;
-        p.eye_and_bias[2] = view.cam.position.z, p.eye_and_bias[3] = view.lod_bias;
-        p.sun[0] = view.to_sun.x, p.sun[1] = view.to_sun.y, p.sun[2] = view.to_sun.z;
-        p.quads = quads_.address(), p.origins = origins_.address(), p.colours = colours_.address();
-        p.colour_count = colour_count_;
-        return p;
-    }
-
-    void read_back(raster_frame& frame) const {
-        std::size_t n = std::size_t(frame.width) * std::size_t(frame.height);
-        const auto* bytes = static_cast<const std::uint8_t*>(targets_->readback().mapped());
-        frame.rgba.assign(bytes, bytes + n * vulkan_detail::raster_colour_bytes);
-        frame.pixels.resize(n);
-        const auto* ids = reinterpret_cast<const std::int32_t*>(bytes + targets_->identity_offset());
-        for (std::size_t i = 0; i < n; ++i)
-            frame.pixels[i] = {{ids[4 * i], ids[4 * i + 1], ids[4 * i + 2]}, std::uint32_t(ids[4 * i + 3])};
-    }
-
-    std::shared_ptr<vulkan_detail::context> ctx_;
-    vulkan_detail::command_stream commands_;
-    vulkan_detail::kernel_timer timer_;
-    VkRenderPass pass_ = VK_NULL_HANDLE;
-    std::unique_ptr<vulkan_detail::raster_pipeline> pipeline_;
-    std::unique_ptr<vulkan_detail::raster_targets> targets_;
+    vulkan_detail::raster_canvas canvas_;
+    vulkan_detail::raster_pipeline pipeline_;
     std::vector<chunk_entry> chunks_;
     vulkan_detail::buffer quads_, origins_, colours_, indirect_, indirect_staging_;
     std::uint32_t colour_count_ = 0;

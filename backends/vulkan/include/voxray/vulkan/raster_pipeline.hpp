@@ -1,6 +1,6 @@
-// The graphics pipeline of chunk meshes: the vertex and fragment shaders built from
-// backends/vulkan/shaders/chunk_raster_*.glsl, no vertex input (the vertex shader pulls the
-// quads by device address), back faces culled, reversed depth (greater is nearer), and
+// A graphics pipeline of the raster paths: a vertex and a fragment shader built from
+// backends/vulkan/shaders/<program>_*.glsl, no vertex input (the vertex shaders pull what
+// they draw by device address), back faces culled, reversed depth (greater is nearer), and
 // viewport and scissor set per frame. Push constants only, like the trace pipelines.
 #pragma once
 #include <bit>
@@ -10,30 +10,33 @@
 
 #include <vulkan/vulkan.h>
 
-#include "voxray/generated/spirv_chunk_raster_frag.hpp"
-#include "voxray/generated/spirv_chunk_raster_vert.hpp"
 #include "voxray/vulkan/check.hpp"
 #include "voxray/vulkan/device.hpp"
 
 namespace voxray::vulkan_detail {
 
-// Must match vx_raster_push in backends/vulkan/shaders/chunk_raster_frame.glsl.
+// raster_push::fixed_level when the level of detail follows the distance.
+inline constexpr std::uint32_t raster_by_distance = 0xFFFFFFFFu;
+
+// Must match vx_raster_push in backends/vulkan/shaders/raster_frame.glsl.
 struct raster_push {
     float view_projection[16];  // column-major, eye-relative
     float eye_and_bias[4];
     float sun[4];
-    std::uint64_t quads, origins, colours;  // device addresses
-    std::uint32_t colour_count, unused;
+    std::uint64_t data[3];  // device addresses: what the program draws, then its colours
+    std::uint32_t colour_count, fixed_level;
 };
 static_assert(std::endian::native == std::endian::little, "addresses are passed as (low, high) word pairs");
 static_assert(sizeof(raster_push) == 128, "the least maxPushConstantsSize every device offers");
-static_assert(offsetof(raster_push, quads) == 96 && offsetof(raster_push, colour_count) == 120);
+static_assert(offsetof(raster_push, data) == 96 && offsetof(raster_push, colour_count) == 120);
 
 class raster_pipeline {
 public:
-    raster_pipeline(VkDevice device, VkRenderPass pass) : device_(device) {
+    raster_pipeline(VkDevice device, VkRenderPass pass, std::span<const std::uint32_t> vertex_spirv,
+                    std::span<const std::uint32_t> fragment_spirv)
+        : device_(device) {
         try {
-            create(pass);
+            create(pass, vertex_spirv, fragment_spirv);
         } catch (...) {
             destroy();
             throw;
@@ -59,9 +62,10 @@ private:
         return m;
     }
 
-    void create(VkRenderPass pass) {
-        vertex_ = module(voxray_spirv_chunk_raster_vert);
-        fragment_ = module(voxray_spirv_chunk_raster_frag);
+    void create(VkRenderPass pass, std::span<const std::uint32_t> vertex_spirv,
+                std::span<const std::uint32_t> fragment_spirv) {
+        vertex_ = module(vertex_spirv);
+        fragment_ = module(fragment_spirv);
         VkPushConstantRange range{VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0, sizeof(raster_push)};
         auto layout_info = vk_struct<VkPipelineLayoutCreateInfo>(VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO);
         layout_info.pushConstantRangeCount = 1;
@@ -89,7 +93,7 @@ private:
             VK_STRUCTURE_TYPE_PIPELINE_RASTERIZATION_STATE_CREATE_INFO);
         raster.polygonMode = VK_POLYGON_MODE_FILL;
         raster.cullMode = VK_CULL_MODE_BACK_BIT;
-        // The vertex shader winds every quad counter-clockwise seen from outside. Vulkan
+        // The vertex shaders wind every triangle counter-clockwise seen from outside. Vulkan
         // judges the winding as the picture shows it (its area formula carries a minus for
         // the downward framebuffer y), and the picture is not mirrored: still counter-clockwise.
         raster.frontFace = VK_FRONT_FACE_COUNTER_CLOCKWISE;
