@@ -29,7 +29,8 @@ flat_mesh flatten(const std::vector<meshing::chunk_mesh>& meshes, const palette&
             rgba c = colours[std::uint8_t(material)].colour;
             if (!c.r && !c.g && !c.b) {
                 auto h = scenes::mix64(material + 1);
-                c = {std::uint8_t(64 + (h & 127)), std::uint8_t(64 + ((h >> 8) & 127)), std::uint8_t(64 + ((h >> 16) & 127)), 255};
+                c = {std::uint8_t(64 + (h & 127)), std::uint8_t(64 + ((h >> 8) & 127)),
+                     std::uint8_t(64 + ((h >> 16) & 127)), 255};
             }
             for (const glm::ivec3& p : corners) {
                 out.positions.insert(out.positions.end(), {float(p.x), float(p.y), float(p.z)});

@@ -49,7 +49,7 @@ void write_raster_png(const voxel_model& model, const std::vector<meshing::chunk
             std::size_t i = std::size_t(y) * std::size_t(v.width) + std::size_t(x);
             bool drawn = f.rgba[4 * i + 3] != 0;
             auto sky_rgb = to_srgb8(sky(basis.pixel(x, y).direction, model.up_axis));
-            for (int k = 0; k < 3; ++k) rgb[3 * i + std::size_t(k)] = drawn ? f.rgba[4 * i + std::size_t(k)] : sky_rgb[k];
+            for (std::size_t k = 0; k < 3; ++k) rgb[3 * i + k] = drawn ? f.rgba[4 * i + k] : sky_rgb[k];
         }
     write_image(o.png, v.width, v.height, rgb);
     std::printf("raster on %s: %u draws (%u face ranges culled), %llu quads at LOD bias %g, %.2f ms on the device, "
@@ -109,7 +109,8 @@ struct level_images::state {
     raster_frame level0;
 };
 
-level_images::level_images(const std::vector<meshing::chunk_mesh>& meshes, int up_axis) : state_(new state) {
+level_images::level_images(const std::vector<meshing::chunk_mesh>& meshes, int up_axis)
+    : state_(std::make_unique<state>()) {
     box3i bounds{glm::ivec3(0), glm::ivec3(0)};
     for (std::size_t i = 0; i < meshes.size(); ++i) {
         box3i chunk{meshes[i].origin, meshes[i].origin + VX_MESH_CHUNK_EDGE};

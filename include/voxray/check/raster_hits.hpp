@@ -53,7 +53,8 @@ inline raster_agreement compare_raster_hits(std::span<const raster_pixel> pixels
             bool edge = false;
             for (int k = 0; k < 4; ++k) {
                 int nx = x + dx[k], ny = y + dy[k];
-                if (nx >= 0 && ny >= 0 && nx < width && ny < height) edge = edge || !same_surface(hits[at(nx, ny)], hits[i]);
+                if (nx >= 0 && ny >= 0 && nx < width && ny < height)
+                    edge = edge || !same_surface(hits[at(nx, ny)], hits[i]);
             }
             a.off_edges += !edge;
         }

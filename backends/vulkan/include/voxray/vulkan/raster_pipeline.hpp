@@ -86,7 +86,8 @@ private:
         auto assembly = vk_struct<VkPipelineInputAssemblyStateCreateInfo>(
             VK_STRUCTURE_TYPE_PIPELINE_INPUT_ASSEMBLY_STATE_CREATE_INFO);
         assembly.topology = VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST;
-        auto viewport = vk_struct<VkPipelineViewportStateCreateInfo>(VK_STRUCTURE_TYPE_PIPELINE_VIEWPORT_STATE_CREATE_INFO);
+        auto viewport =
+            vk_struct<VkPipelineViewportStateCreateInfo>(VK_STRUCTURE_TYPE_PIPELINE_VIEWPORT_STATE_CREATE_INFO);
         viewport.viewportCount = 1;
         viewport.scissorCount = 1;
         auto raster = vk_struct<VkPipelineRasterizationStateCreateInfo>(
@@ -115,7 +116,8 @@ private:
         blending.attachmentCount = 2;
         blending.pAttachments = blend;
         VkDynamicState dynamic_states[2] = {VK_DYNAMIC_STATE_VIEWPORT, VK_DYNAMIC_STATE_SCISSOR};
-        auto dynamic = vk_struct<VkPipelineDynamicStateCreateInfo>(VK_STRUCTURE_TYPE_PIPELINE_DYNAMIC_STATE_CREATE_INFO);
+        auto dynamic =
+            vk_struct<VkPipelineDynamicStateCreateInfo>(VK_STRUCTURE_TYPE_PIPELINE_DYNAMIC_STATE_CREATE_INFO);
         dynamic.dynamicStateCount = 2;
         dynamic.pDynamicStates = dynamic_states;
 
