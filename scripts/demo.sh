@@ -41,6 +41,9 @@ echo "== open world: $SCENE tiled 4 x 4 x 1, built chunk by chunk (128^3 chunks)
 "$VOXRAY" world-fly "$OUT/world" --backend vulkan --frames 8 --factor 2.0 --png-dir "$OUT/world_frames"
 echo "== the same path drawn by the GPU-driven passes (chunk and tile selection, visibility buffer, Hi-Z, colour resolve), ms per pass (vulkan)"
 "$VOXRAY" world-fly "$OUT/world" --backend vulkan --frames 8 --factor 2.0 --passes --png-dir "$OUT/world_pass_frames"
+echo "== the same world's shown chunks meshed at their LOD and drawn by the Vulkan raster path (POP inside chunks), beside the traced frames"
+"$VOXRAY" world-fly "$OUT/world" --backend vulkan --frames 2 --factor 2.0 --raster --width 640 --height 360 \
+    --png-dir "$OUT/world_raster_frames" | grep "raster:"
 echo "== chunk meshes with POP levels of detail: the one-chunk anchors and $SCENE, then face sets and crack tests"
 "$VOXRAY" mesh-bench builtin:sphere30 builtin:terrain64 builtin:checker "$SCENE" --seconds 0.2 --json "$OUT/mesh.jsonl" 2>/dev/null
 "$VOXRAY" mesh builtin:terrain64 --level 2 --gltf "$OUT/terrain64_level2.glb" --ply "$OUT/terrain64_level2.ply" 2>/dev/null | tail -n 8
@@ -55,5 +58,5 @@ mkdir -p "$OUT/entities"
 "$VOXRAY" render "$OUT/herd.json" --frames 6 --structure naadf --backend vulkan --width 960 --height 540 \
     --out "$OUT/entities/frame.png" 2>/dev/null
 "$VOXRAY" check "$OUT/herd.json" --frames 2 --rays 20000 --backends cpu,vulkan 2>/dev/null | tail -n 5 || status=1
-echo "== images (entities/frame_*.png too), results.jsonl, mesh.jsonl, terrain64_level2.glb, mesh_raster_*.png, plots (mrays.png, speed_vs_memory.png, steps.png) and table.md in $OUT"
+echo "== images (entities/frame_*.png too), results.jsonl, mesh.jsonl, terrain64_level2.glb, mesh_raster_*.png, world_raster_frames/raster_and_traced_*.png, plots (mrays.png, speed_vs_memory.png, steps.png) and table.md in $OUT"
 exit ${status}

@@ -20,7 +20,9 @@
 #include "image_writer.hpp"
 #include "output.hpp"
 #include "scene.hpp"
+#include "ssim.hpp"
 #include "world_meta.hpp"
+#include "world_raster.hpp"
 #include "voxray/io/mesh_loader.hpp"
 #include "voxray/rays.hpp"
 #include "voxray/world/frame/frame.hpp"
@@ -216,7 +218,8 @@ struct fly_options {
     std::string dir, backend = "cpu", png_dir, json_out;
     int frames = 24, width = 640, height = 360;
     double factor = 2.0, budget_mib = 1024;
-    bool lod0 = false, passes = false;
+    bool lod0 = false, passes = false, raster = false;
+    float lod_bias = 8.0f;  // --raster: POP inside each chunk, t = log2(distance in its cells) - bias
 };
 
 // The camera path: along the world's longest horizontal axis, a third of the way up,
@@ -248,6 +251,7 @@ int fly(const fly_options& o) {
                        std::to_string(fly_bytes_per_pixel) + " bytes a pixel)");
     if (!o.json_out.empty()) require_writable(o.json_out, "--json");
     if (!o.png_dir.empty()) require_writable_folder(o.png_dir, "--png-dir");
+    if (o.raster && o.passes) fail("--raster compares with the traced frame, which --passes does not make: use one of them");
     residency_options ro;
     ro.streaming_factor = o.lod0 ? 1e9 : o.factor;
     ro.budget_bytes = o.lod0 ? std::uint64_t(-1) / 2 : std::uint64_t(o.budget_mib * 1048576.0);
@@ -264,6 +268,8 @@ int fly(const fly_options& o) {
     double disk = double(m.disk_bytes());
     std::optional<world_frame<Backend, streamed_world>> passes;  // --passes: the GPU-driven frame
     if (o.passes) passes.emplace(t);
+    std::optional<world_raster> raster;  // --raster: the shown chunks meshed and drawn beside the traced frame
+    if (o.raster) raster.emplace(pal, colours, up_axis, o.lod_bias);
     float far_depth = glm::length(glm::vec3(m.bounds.extent())) * 1.5f + 64.0f;
     if (o.passes)
         std::printf("%5s %9s %9s %9s %9s %9s %9s %9s %7s %7s %8s %12s %8s\n", "frame", "update ms", "upload ms", "select ms",
@@ -331,17 +337,52 @@ int fly(const fly_options& o) {
             std::printf("%5d %9.1f %9.1f %9.1f %10.1f %8llu %12.2f %10.2f %7.1f%%\n", f, ms(t0, t1), ms(t1, t2), ms(t2, t3),
                         double(t.bytes_uploaded_last_update()) / 1024.0, (unsigned long long)s.resident_chunks,
                         double(s.resident_bytes) / 1048576.0, double(world.bytes()) / 1048576.0, 100.0 * share);
-        if (!o.png_dir.empty()) {
+        auto picture = [&](bool shadows) {
             std::vector<std::uint8_t> rgb(rays.size() * 3);
             for (std::size_t i = 0; i < rays.size(); ++i) {
                 glm::vec3 a = colours ? albedo_rgba8(hits[i]) : albedo(pal, hits[i]);
-                glm::vec3 c = hits[i].is_hit() ? shade(a, hits[i], sun, shadow[i].is_hit()) : sky(rays[i].direction, up_axis);
+                bool dark = shadows && shadow[i].is_hit();
+                glm::vec3 c = hits[i].is_hit() ? shade(a, hits[i], sun, dark) : sky(rays[i].direction, up_axis);
                 auto px = to_srgb8(c);
                 std::copy(px.begin(), px.end(), rgb.begin() + std::ptrdiff_t(i * 3));
             }
-            char name[32];
-            std::snprintf(name, sizeof name, "frame_%03d.png", f);
-            write_image((std::filesystem::path(o.png_dir) / name).string(), o.width, o.height, rgb);
+            return rgb;
+        };
+        auto png = [&](const char* pattern, int width, const std::vector<std::uint8_t>& rgb) {
+            char name[48];
+            std::snprintf(name, sizeof name, pattern, f);
+            write_image((std::filesystem::path(o.png_dir) / name).string(), width, o.height, rgb);
+        };
+        if (!o.png_dir.empty()) png("frame_%03d.png", o.width, picture(true));
+        json raster_line;
+        if (raster) {
+            // The traced frame lit as the raster path lights (no shadows), for SSIM.
+            world_raster_frame r = raster->draw(world, cam, o.width, o.height);
+            std::vector<std::uint8_t> traced = picture(false);
+            double ssim = ssim_rgb8(r.rgb, traced, o.width, o.height);
+            // Rays that start in a solid voxel or on its side (t = 0): the traced frame shows
+            // that voxel, where the raster path sees past faces through the eye.
+            std::size_t inside = 0;
+            for (const hit& h : hits) inside += h.is_hit() && h.t <= 0.0f;
+            double inside_share = hits.empty() ? 0.0 : double(inside) / double(hits.size());
+            std::printf("      raster: %llu quads from %llu chunks (%llu meshed in %.1f ms), drawn in %.1f ms; "
+                        "SSIM %.4f against the traced frame (%.1f%% of its rays start in or on a solid voxel)\n",
+                        (unsigned long long)r.quads, (unsigned long long)r.chunks_shown,
+                        (unsigned long long)r.chunks_meshed, r.mesh_ms, r.draw_ms, ssim, 100.0 * inside_share);
+            raster_line = {{"quads", r.quads}, {"chunks_meshed", r.chunks_meshed}, {"mesh_ms", r.mesh_ms},
+                           {"draw_ms", r.draw_ms}, {"ssim", ssim}, {"lod_bias", o.lod_bias},
+                           {"rays_starting_in_a_voxel", inside_share}};
+            if (!o.png_dir.empty()) {
+                // Side by side: the raster frame, then the traced one.
+                std::vector<std::uint8_t> both(traced.size() * 2);
+                std::size_t row = std::size_t(o.width) * 3;
+                for (int y = 0; y < o.height; ++y) {
+                    std::copy_n(r.rgb.begin() + std::ptrdiff_t(y * row), row, both.begin() + std::ptrdiff_t(2 * y * row));
+                    std::copy_n(traced.begin() + std::ptrdiff_t(y * row), row,
+                                both.begin() + std::ptrdiff_t((2 * y + 1) * row));
+                }
+                png("raster_and_traced_%03d.png", 2 * o.width, both);
+            }
         }
         if (out) {
             json line{{"world", o.dir}, {"backend", Backend::name}, {"factor", o.lod0 ? 0.0 : o.factor}, {"lod0", o.lod0},
@@ -349,6 +390,7 @@ int fly(const fly_options& o) {
                       {"sent_bytes", t.bytes_uploaded_last_update()}, {"resident_chunks", s.resident_chunks},
                       {"resident_bytes", s.resident_bytes}, {"device_bytes", world.bytes()}, {"disk_bytes", m.disk_bytes()},
                       {"failures", s.failures}};
+            if (raster) line["raster"] = raster_line;
             if (o.passes) {
                 json per_pass = json::object();
                 for (std::size_t k = 0; k < fs.ms.size(); ++k) per_pass[std::string(frame_stats::pass_names[k])] = fs.ms[k];
@@ -406,7 +448,12 @@ command add_world_fly(CLI::App& parent) {
     app->add_flag("--lod0", o->lod0, "every chunk at LOD 0, no budget: the reference frames");
     app->add_flag("--passes", o->passes, "render with the GPU-driven passes (chunk and tile selection, Hi-Z, visibility "
                   "buffer, colour resolve), timed pass by pass; primary visibility only, no shadow rays");
-    app->add_option("--png-dir", o->png_dir, "write frame_NNN.png here");
+    app->add_flag("--raster", o->raster, "also mesh the shown chunks at their LOD and draw them with the Vulkan raster "
+                  "path (POP inside chunks), with SSIM against the traced frame");
+    app->add_option("--lod-bias", o->lod_bias, "--raster: POP t = log2(distance in a chunk's cells) - bias")
+        ->check(finite_range(-64.0, 64.0))
+        ->capture_default_str();
+    app->add_option("--png-dir", o->png_dir, "write frame_NNN.png here (with --raster: raster_and_traced_NNN.png too)");
     app->add_option("--json", o->json_out, "append one JSON line a frame");
     return {app, [o] {
                 int rc = 2;

@@ -40,6 +40,14 @@
 
 namespace voxray {
 
+// Where a chunk mesh stands: world position = world_origin + (position in cells) << cell_bits.
+// The default places a mesh of voxels as it is; a chunk of an open world's LOD n has cells
+// of 2^n voxels (meshing/world_chunk_source.hpp).
+struct chunk_placement {
+    glm::ivec3 world_origin{0};
+    int cell_bits = 0;
+};
+
 class chunk_rasterizer {
 public:
     explicit chunk_rasterizer(const vulkan_options& options = {})
@@ -50,14 +58,24 @@ public:
     std::string device_name() const { return canvas_.ctx().name(); }
 
     // The chunks to draw (replacing any before) and the colour of each material, RGBA8
-    // (r in the low byte); a material past the end draws magenta.
-    void upload(std::span<const meshing::chunk_mesh> meshes, std::span<const std::uint32_t> colours) {
+    // (r in the low byte); a material past the end draws magenta. `placements`: one per
+    // mesh, or none for meshes of voxels in place.
+    void upload(std::span<const meshing::chunk_mesh> meshes, std::span<const std::uint32_t> colours,
+                std::span<const chunk_placement> placements = {}) {
+        if (!placements.empty() && placements.size() != meshes.size())
+            fail("chunk_rasterizer::upload: ", placements.size(), " placements for ", meshes.size(), " meshes");
         std::vector<std::uint32_t> words;
-        std::vector<std::array<std::int32_t, 4>> origins;
+        std::vector<std::array<std::int32_t, 8>> origins;  // the shader's two ivec4s a chunk
         chunks_.clear();
-        for (const auto& m : meshes) {
-            chunks_.push_back({m.origin, std::uint64_t(words.size() / VX_MESH_QUAD_WORDS), m.table});
-            origins.push_back({m.origin.x, m.origin.y, m.origin.z, 0});
+        for (std::size_t i = 0; i < meshes.size(); ++i) {
+            const auto& m = meshes[i];
+            chunk_placement at = placements.empty() ? chunk_placement{} : placements[i];
+            if (at.cell_bits < 0 || at.cell_bits > 16)
+                fail("chunk_rasterizer::upload: placement ", i, " has cells of 2^", at.cell_bits,
+                     " voxels (0..16 allowed)");
+            chunks_.push_back({m.origin, at, std::uint64_t(words.size() / VX_MESH_QUAD_WORDS), m.table});
+            origins.push_back({m.origin.x, m.origin.y, m.origin.z, at.cell_bits, at.world_origin.x, at.world_origin.y,
+                               at.world_origin.z, 0});
             words.insert(words.end(), m.words.begin(), m.words.end());
         }
         std::uint64_t quads = words.size() / VX_MESH_QUAD_WORDS;
@@ -66,7 +84,7 @@ public:
             fail("vulkan: ", quads, " quads are more than one raster upload draws (at most ", most,
                  ": vertex indices are 32-bit, 6 a quad)");
         quads_ = canvas_.filled(words.data(), words.size() * sizeof(std::uint32_t), "chunk quads");
-        origins_ = canvas_.filled(origins.data(), origins.size() * sizeof(origins[0]), "chunk origins");
+        placements_ = canvas_.filled(origins.data(), origins.size() * sizeof(origins[0]), "chunk placements");
         colours_ = canvas_.filled(colours.data(), colours.size_bytes(), "material colours");
         colour_count_ = std::uint32_t(colours.size());
         const auto& ctx = canvas_.ctx();
@@ -85,7 +103,7 @@ public:
         raster_frame frame;
         std::vector<VkDrawIndirectCommand> list = draw_list(view, frame);
         vulkan_detail::raster_push push = vulkan_detail::raster_canvas::camera_push(view);
-        push.data[0] = quads_.address(), push.data[1] = origins_.address(), push.data[2] = colours_.address();
+        push.data[0] = quads_.address(), push.data[1] = placements_.address(), push.data[2] = colours_.address();
         push.colour_count = colour_count_;
         bool indirect = canvas_.ctx().indirect_draws() && !list.empty();
         canvas_.render(
@@ -103,7 +121,8 @@ public:
 
 private:
     struct chunk_entry {
-        glm::ivec3 origin;
+        glm::ivec3 origin;  // in cells
+        chunk_placement at;
         std::uint64_t first_quad;
         std::array<std::uint32_t, VX_MESH_TABLE_ENTRIES> table;
     };
@@ -111,17 +130,19 @@ private:
     // One range per (chunk, face direction) left after culling.
     std::vector<VkDrawIndirectCommand> draw_list(const raster_view& view, raster_frame& frame) const {
         std::vector<VkDrawIndirectCommand> list;
-        meshing::pop_view pop{view.cam.position, view.lod_bias};
-        glm::vec3 eye = view.cam.position;
         glm::vec3 forward = camera_frame(view.cam, 1, 1).forward;
         for (std::size_t i = 0; i < chunks_.size(); ++i) {
             const chunk_entry& c = chunks_[i];
+            // The eye in the chunk's cells, as the vertex shader brings it there.
+            float cell = float(1 << c.at.cell_bits);
+            glm::vec3 eye = (view.cam.position - glm::vec3(c.at.world_origin)) / cell;
+            meshing::pop_view pop{eye, view.lod_bias};
             glm::vec3 lo(c.origin), hi = lo + float(VX_MESH_CHUNK_EDGE);
             // Behind the eye: every corner of the chunk's box on the far side of the eye's plane.
             bool behind = view.cull_faces;
             for (int k = 0; k < 8 && behind; ++k) {
                 glm::vec3 corner((k & 1) ? hi.x : lo.x, (k & 2) ? hi.y : lo.y, (k & 4) ? hi.z : lo.z);
-                behind = glm::dot(corner - eye, forward) < 0.0f;
+                behind = glm::dot(corner - eye, forward) < 0.0f;  // cells scale uniformly
             }
             int level = view.fixed_level >= 0 ? view.fixed_level : meshing::chunk_draw_level(c.origin, pop);
             for (int f = 0; f < VX_MESH_FACES; ++f) {
@@ -168,7 +189,7 @@ private:
     vulkan_detail::raster_canvas canvas_;
     vulkan_detail::raster_pipeline pipeline_;
     std::vector<chunk_entry> chunks_;
-    vulkan_detail::buffer quads_, origins_, colours_, indirect_, indirect_staging_;
+    vulkan_detail::buffer quads_, placements_, colours_, indirect_, indirect_staging_;
     std::uint32_t colour_count_ = 0;
 };
 
