@@ -94,7 +94,7 @@ TEST(world_chunk_source, clear_cuts_out_the_cells_of_a_finer_chunk) {
     EXPECT_GT(solid_high, 0u);
 }
 
-TEST(chunk_raster, cells_of_two_voxels_draw_the_model_scaled_twice) {
+TEST(chunk_placement, cells_of_two_voxels_draw_the_model_scaled_twice) {
     // A model meshed in its own cells and placed with cells of 2 voxels at an odd origin,
     // against the ray tracer on the model scaled up 2x voxel by voxel.
     voxel_model cells = test::blob_model(6, box3i{{-20, -10, -30}, {50, 40, 40}});
