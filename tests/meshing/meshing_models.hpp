@@ -1,7 +1,13 @@
 // Models for the mesher's tests: blobs of a few materials that merge into large quads and
 // cross chunk sides, at negative coordinates too.
 #pragma once
+#include <cstdint>
+#include <vector>
+
 #include "voxray/core/box.hpp"
+#include "voxray/meshing/chunk_source.hpp"
+#include "voxray/meshing/mesher.hpp"
+#include "voxray/meshing/squashed.hpp"
 #include "voxray/model/voxel_model.hpp"
 #include "voxray/scenes/noise.hpp"
 
@@ -31,6 +37,20 @@ inline voxel_model blob_model(std::uint64_t seed, box3i bounds, int count = 12, 
         m.set(bounds.min + glm::ivec3(g.range(0, e.x - 1), g.range(0, e.y - 1), g.range(0, e.z - 1)),
               std::uint8_t(g.range(0, materials)));
     return m;
+}
+
+// Every chunk of the model meshed (no AO), with the squashed-face pass where asked.
+inline std::vector<meshing::chunk_mesh> mesh_all(const voxel_model& model, bool squashed = true) {
+    std::vector<meshing::chunk_mesh> meshes;
+    meshing::mesher mesher;
+    meshing::chunk_voxels chunk;
+    std::vector<std::uint8_t> scratch;
+    for (glm::ivec3 origin : meshing::chunk_origins(model)) {
+        meshing::fill_chunk(model, origin, chunk, scratch);
+        mesher.mesh(chunk, meshes.emplace_back());
+        if (squashed) meshing::remove_squashed_faces(meshes.back());
+    }
+    return meshes;
 }
 
 }  // namespace voxray::test

@@ -33,19 +33,6 @@ using namespace voxray;
 
 namespace {
 
-std::vector<meshing::chunk_mesh> mesh_all(const voxel_model& model) {
-    std::vector<meshing::chunk_mesh> meshes;
-    meshing::mesher mesher;
-    meshing::chunk_voxels chunk;
-    std::vector<std::uint8_t> scratch;
-    for (glm::ivec3 origin : meshing::chunk_origins(model)) {
-        meshing::fill_chunk(model, origin, chunk, scratch);
-        mesher.mesh(chunk, meshes.emplace_back());
-        meshing::remove_squashed_faces(meshes.back());
-    }
-    return meshes;
-}
-
 std::vector<std::uint32_t> colours_of(const palette& p) {
     std::vector<std::uint32_t> colours(palette::size);
     for (int i = 0; i < palette::size; ++i) colours[std::size_t(i)] = pack_rgba(p[std::uint8_t(i)].colour);
@@ -53,7 +40,7 @@ std::vector<std::uint32_t> colours_of(const palette& p) {
 }
 
 void expect_raster_matches_rays(const voxel_model& model, const std::string& name, int views) {
-    auto meshes = mesh_all(model);
+    auto meshes = test::mesh_all(model);
     chunk_rasterizer raster;
     raster.upload(meshes, colours_of(model.palette()));
     dense_grid grid(model);
@@ -103,7 +90,7 @@ TEST(chunk_raster, level_0_shows_the_primary_hits_on_a_shared_scene) {
 TEST(chunk_raster, culling_changes_no_pixel) {
     voxel_model model = test::blob_model(3, box3i{{-64, 0, -64}, {128, 64, 128}});
     chunk_rasterizer raster;
-    raster.upload(mesh_all(model), colours_of(model.palette()));
+    raster.upload(test::mesh_all(model), colours_of(model.palette()));
     // From inside the model's box, so that chunks lie on every side and behind the eye.
     raster_view v{.cam = look_at({20, 50, 10}, {60, 10, 70}), .width = 160, .height = 120, .lod_bias = 64.0f};
     raster_frame culled = raster.draw(v);
@@ -122,7 +109,7 @@ TEST(chunk_raster, culling_changes_no_pixel) {
 TEST(chunk_raster, coarser_levels_draw_prefixes) {
     voxel_model model = scenes::make_chunk_scene("terrain64");
     chunk_rasterizer raster;
-    raster.upload(mesh_all(model), colours_of(model.palette()));
+    raster.upload(test::mesh_all(model), colours_of(model.palette()));
     raster_view v{.cam = auto_camera(model.bounds(), model.up_axis), .width = 96, .height = 72, .lod_bias = 64.0f};
     std::uint64_t finest = raster.draw(v).quads;
     v.lod_bias = -8.0f;  // the top level everywhere
@@ -172,7 +159,7 @@ TEST(chunk_raster, nearer_faces_hide_farther_ones) {
     for (int y = -8; y < 8; ++y)
         for (int x = -8; x < 8; ++x) model.set({x, y, -40}, 2), model.set({x, y, 70}, 1);
     chunk_rasterizer raster;
-    raster.upload(mesh_all(model), colours_of(model.palette()));
+    raster.upload(test::mesh_all(model), colours_of(model.palette()));
     raster_frame f = raster.draw({.cam = look_at({0.5f, 0.5f, -100.0f}, {0.5f, 0.5f, 0.0f}), .width = 16, .height = 16,
                                   .lod_bias = 64.0f});
     const raster_pixel& centre = f.pixels[8 * 16 + 8];
@@ -182,7 +169,7 @@ TEST(chunk_raster, nearer_faces_hide_farther_ones) {
 
 TEST(chunk_raster, fixed_levels_draw_their_prefixes_unmorphed) {
     voxel_model model = test::blob_model(5, box3i{{-40, -40, -40}, {100, 60, 80}});
-    auto meshes = mesh_all(model);
+    auto meshes = test::mesh_all(model);
     chunk_rasterizer raster;
     raster.upload(meshes, colours_of(model.palette()));
     raster_view v{.cam = auto_camera(model.bounds(), model.up_axis), .width = 128, .height = 96, .lod_bias = 64.0f,
@@ -203,7 +190,7 @@ TEST(chunk_raster, fixed_levels_draw_their_prefixes_unmorphed) {
 
 TEST(triangle_raster, triangles_of_the_quads_draw_the_same_picture) {
     voxel_model model = test::blob_model(9, box3i{{-30, -30, -30}, {90, 50, 70}}, 12, 1);
-    auto meshes = mesh_all(model);
+    auto meshes = test::mesh_all(model);
     std::vector<float> positions;
     std::vector<std::uint32_t> indices;
     for (auto& m : meshes)

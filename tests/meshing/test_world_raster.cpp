@@ -3,6 +3,7 @@
 // the model's voxels in its box, a finer chunk's cells are cut out of a coarser stand-in,
 // and a mesh of cells of 2 voxels draws what the ray tracer sees of the model scaled 2x.
 #include <cstdint>
+#include <filesystem>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -31,19 +32,24 @@ std::vector<std::uint8_t> box_bytes(const auto& source, const box3i& box) {
     return out;
 }
 
+// The model built into `dir` in 64^3 chunks, and streaming that shows all of it at LOD 0.
+residency_options build_with_lod_0_everywhere(const voxel_model& model, const std::filesystem::path& dir) {
+    world_build_options build;
+    build.chunk_bits = 6;
+    build.threads = 2;
+    build_world(model_source(model), dir, build);
+    residency_options every_chunk_at_lod_0;
+    every_chunk_at_lod_0.streaming_factor = 1e9;
+    every_chunk_at_lod_0.budget_bytes = std::uint64_t(1) << 40;
+    return every_chunk_at_lod_0;
+}
+
 }  // namespace
 
 TEST(world_chunk_source, lod_0_chunks_hand_out_the_models_voxels) {
     voxel_model model = test::blob_model(11, box3i{{-70, -10, -40}, {60, 50, 90}});
     test::temp_dir dir;
-    world_build_options build;
-    build.chunk_bits = 6;
-    build.threads = 2;
-    build_world(model_source(model), dir.path, build);
-    residency_options every_chunk_at_lod_0;
-    every_chunk_at_lod_0.streaming_factor = 1e9;
-    every_chunk_at_lod_0.budget_bytes = std::uint64_t(1) << 40;
-    streamed_world world(dir.path, every_chunk_at_lod_0);
+    streamed_world world(dir.path, build_with_lod_0_everywhere(model, dir.path));
     world.update(glm::dvec3(0.0), true);
     const world_grid& grid = world.manifest().grid;
     std::size_t chunks = 0;
@@ -74,14 +80,7 @@ TEST(world_chunk_source, lod_0_chunks_hand_out_the_models_voxels) {
 TEST(world_chunk_source, clear_cuts_out_the_cells_of_a_finer_chunk) {
     voxel_model model = test::blob_model(4, box3i{{0, 0, 0}, {64, 64, 64}}, 30);
     test::temp_dir dir;
-    world_build_options build;
-    build.chunk_bits = 6;
-    build.threads = 2;
-    build_world(model_source(model), dir.path, build);
-    residency_options o;
-    o.streaming_factor = 1e9;
-    o.budget_bytes = std::uint64_t(1) << 40;
-    streamed_world world(dir.path, o);
+    streamed_world world(dir.path, build_with_lod_0_everywhere(model, dir.path));
     world.update(glm::dvec3(0.0), true);
     auto shown = world.residency().placements();
     ASSERT_FALSE(shown.empty());
@@ -103,14 +102,7 @@ TEST(chunk_placement, cells_of_two_voxels_draw_the_model_scaled_twice) {
     cells.for_each_voxel([&](glm::ivec3 p, std::uint8_t v) {
         for (int k = 0; k < 8; ++k) scaled.set(at + 2 * p + glm::ivec3(k & 1, (k >> 1) & 1, k >> 2), v);
     });
-    std::vector<meshing::chunk_mesh> meshes;
-    meshing::mesher mesher;
-    meshing::chunk_voxels chunk;
-    std::vector<std::uint8_t> scratch;
-    for (glm::ivec3 origin : meshing::chunk_origins(cells)) {
-        meshing::fill_chunk(cells, origin, chunk, scratch);
-        mesher.mesh(chunk, meshes.emplace_back());
-    }
+    std::vector<meshing::chunk_mesh> meshes = test::mesh_all(cells, false);
     std::vector<chunk_placement> placements(meshes.size(), chunk_placement{at, 1});
     chunk_rasterizer raster;
     raster.upload(meshes, std::vector<std::uint32_t>(256, 0xFFFFFFFFu), placements);

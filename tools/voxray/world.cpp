@@ -251,7 +251,8 @@ int fly(const fly_options& o) {
                        std::to_string(fly_bytes_per_pixel) + " bytes a pixel)");
     if (!o.json_out.empty()) require_writable(o.json_out, "--json");
     if (!o.png_dir.empty()) require_writable_folder(o.png_dir, "--png-dir");
-    if (o.raster && o.passes) fail("--raster compares with the traced frame, which --passes does not make: use one of them");
+    if (o.raster && o.passes)
+        fail("--raster compares with the traced frame, which --passes does not make: use one of them");
     residency_options ro;
     ro.streaming_factor = o.lod0 ? 1e9 : o.factor;
     ro.budget_bytes = o.lod0 ? std::uint64_t(-1) / 2 : std::uint64_t(o.budget_mib * 1048576.0);
@@ -377,7 +378,8 @@ int fly(const fly_options& o) {
                 std::vector<std::uint8_t> both(traced.size() * 2);
                 std::size_t row = std::size_t(o.width) * 3;
                 for (int y = 0; y < o.height; ++y) {
-                    std::copy_n(r.rgb.begin() + std::ptrdiff_t(y * row), row, both.begin() + std::ptrdiff_t(2 * y * row));
+                    std::copy_n(r.rgb.begin() + std::ptrdiff_t(y * row), row,
+                                both.begin() + std::ptrdiff_t(2 * y * row));
                     std::copy_n(traced.begin() + std::ptrdiff_t(y * row), row,
                                 both.begin() + std::ptrdiff_t((2 * y + 1) * row));
                 }

@@ -34,7 +34,8 @@ std::uint8_t nearest_entry(const palette& pal, std::uint32_t colour) {
     long best_d = -1;
     for (int i = 1; i < palette::size; ++i) {
         rgba c = pal[std::uint8_t(i)].colour;
-        long dr = long(colour & 255u) - c.r, dg = long((colour >> 8) & 255u) - c.g, db = long((colour >> 16) & 255u) - c.b;
+        long dr = long(colour & 255u) - c.r, dg = long((colour >> 8) & 255u) - c.g;
+        long db = long((colour >> 16) & 255u) - c.b;
         long d = dr * dr + dg * dg + db * db;
         if (best_d < 0 || d < best_d) best = i, best_d = d;
     }
@@ -86,7 +87,9 @@ world_raster_frame world_raster::draw(const streamed_world& world, const camera&
         for (const placement& q : shown)
             if (q.key.lod < p.key.lod) {
                 box3i fine = chunk_world_box(grid, q.key);
-                if (glm::all(glm::greaterThanEqual(fine.min, box.min)) && glm::all(glm::lessThanEqual(fine.max, box.max)))
+                bool inside = glm::all(glm::greaterThanEqual(fine.min, box.min)) &&
+                              glm::all(glm::lessThanEqual(fine.max, box.max));
+                if (inside)
                     cut.push_back({(fine.min - box.min) >> p.key.lod, (fine.max - box.min) >> p.key.lod});
             }
         auto cached = s.cache.find(p.key);
@@ -124,7 +127,8 @@ world_raster_frame world_raster::draw(const streamed_world& world, const camera&
     std::vector<std::uint32_t> colours(palette::size);
     for (int i = 0; i < palette::size; ++i) colours[std::size_t(i)] = pack_rgba(s.pal[std::uint8_t(i)].colour);
     s.raster.upload(meshes, colours, placements);
-    raster_view v{.cam = cam, .width = width, .height = height, .lod_bias = s.lod_bias, .to_sun = sun_direction(s.up_axis)};
+    raster_view v{.cam = cam, .width = width, .height = height, .lod_bias = s.lod_bias,
+                  .to_sun = sun_direction(s.up_axis)};
     raster_frame f = s.raster.draw(v);
     out.quads = f.quads;
     out.draw_ms = f.gpu_ms;
