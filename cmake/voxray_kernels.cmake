@@ -118,6 +118,22 @@ function(voxray_add_scene world)
     voxray_add_kernel(scene_${world} KERNEL entities/worlds/${world}.h HEADER voxray/entities/worlds/${world}.hpp STAGED)
 endfunction()
 
+# The stamp file of a check of the OpenCL C program `cl` with clang, in `out` (empty
+# without clang): a kernel error shows up at build time, without a device.
+function(voxray_opencl_check name cl out)
+    set(${out} "" PARENT_SCOPE)
+    if(VOXRAY_CLANG)
+        set(stamp ${VOXRAY_GENERATED}/opencl/${name}.cl.checked)
+        add_custom_command(OUTPUT ${stamp}
+            COMMAND ${VOXRAY_CLANG} -x cl -cl-std=CL1.2 -Xclang -finclude-default-header -fsyntax-only
+                    -Werror=implicit-function-declaration ${cl}
+            COMMAND ${CMAKE_COMMAND} -E touch ${stamp}
+            DEPENDS ${cl}
+            COMMENT "Checking the ${name} kernel as OpenCL C 1.2 (clang)" VERBATIM)
+        set(${out} ${stamp} PARENT_SCOPE)
+    endif()
+endfunction()
+
 # voxray_add_kernel(<name> KERNEL <file> HEADER <file> [PASSES <file>...] [STAGED]): the GPU
 # programs of one kernel, vx_<name>_trace in KERNEL (under include/voxray/), whose host
 # header HEADER (under include/) declares its tag (kernels/kernel_tag.inc) and compiles its
@@ -149,17 +165,8 @@ function(voxray_add_kernel name)
     file(CONFIGURE OUTPUT ${entry} CONTENT "${entry_lines}")
     set(cl_dir ${PROJECT_SOURCE_DIR}/backends/opencl/kernels)
     voxray_flatten(OUTPUT ${cl} LINE_MARKERS FILES ${cl_dir}/preamble.cl ${kernel_files} ${pass_files} ${cl_dir}/entry.cl ${entry})
-    set(outputs ${cl})
-    if(VOXRAY_CLANG)
-        set(stamp ${VOXRAY_GENERATED}/opencl/${name}.cl.checked)
-        add_custom_command(OUTPUT ${stamp}
-            COMMAND ${VOXRAY_CLANG} -x cl -cl-std=CL1.2 -Xclang -finclude-default-header -fsyntax-only
-                    -Werror=implicit-function-declaration ${cl}
-            COMMAND ${CMAKE_COMMAND} -E touch ${stamp}
-            DEPENDS ${cl}
-            COMMENT "Checking the ${name} kernel as OpenCL C 1.2 (clang)" VERBATIM)
-        list(APPEND outputs ${stamp})
-    endif()
+    voxray_opencl_check(${name} ${cl} stamp)
+    set(outputs ${cl} ${stamp})
     voxray_shader_include(${name} include_outputs FILES ${PROJECT_SOURCE_DIR}/include/voxray/${arg_KERNEL})
     list(APPEND outputs ${include_outputs})
     if(TARGET voxray_opencl)

@@ -54,6 +54,18 @@ def table(header, rows):
             for name, f in r["remesh"].items():
                 out.append("| %s | %s | %.0f | %.0f | %.1f | %.0f |" % (r["scene"], name, f["read_us_median"],
                            f["remesh_us_per_chunk_median"], f["chunks_per_edit"], f["edit_us_median"]))
+    if all(r.get("kernel") for r in rows):
+        backends = [k["backend"] for k in rows[0]["kernel"]]
+        out += ["", "The mesher kernel (the GPU mesher, `meshing/kernel.h`) on every backend of this machine, up to 8 "
+                "chunks at once, meshes read back: ms per chunk, wall time of the median run; ✓ where every word "
+                "equals the CPU mesher's (%s):" % "; ".join("%s: %s" % (k["backend"], k["device"])
+                                                            for k in rows[0]["kernel"]), "",
+                "| scene | chunks | " + " | ".join(backends) + " |",
+                "|---|---:|" + "---:|" * len(backends)]
+        for r in rows:
+            by = {k["backend"]: k for k in r["kernel"]}
+            out.append("| %s | %d | %s |" % (r["scene"], r["kernel"][0]["chunks"], " | ".join(
+                "%.2f %s" % (by[b]["us_per_chunk"] / 1e3, "✓" if by[b]["equal_to_cpu"] else "✗") for b in backends)))
     machine = header["machine"]
     out.append("")
     out.append("%s, %d cores, %s, commit %s; `%s`. Per chunk: µs of meshing with POP order (mask apart: `mask µs`, "

@@ -46,6 +46,14 @@ function(voxray_opencl_finish)
         ${PROJECT_SOURCE_DIR}/include/voxray/kernels/prelude.h ${PROJECT_SOURCE_DIR}/include/voxray/sync/commit.h
         ${dir}/commit.cl)
     voxray_opencl_embed(commit ${commit_cl})
+    # The mesher kernel (meshing/kernel.h, voxray/opencl/chunk_mesher.hpp): passes only.
+    set(mesher_cl ${VOXRAY_GENERATED}/opencl/mesher.cl)
+    set(mesher_entry ${VOXRAY_GENERATED}/opencl/mesher_entry.cl)
+    file(CONFIGURE OUTPUT ${mesher_entry} CONTENT "VX_OPENCL_PASS_ENTRY(mesher)\n")
+    voxray_kernel_files(mesher_files meshing/kernel.h)
+    voxray_flatten(OUTPUT ${mesher_cl} LINE_MARKERS FILES ${dir}/preamble.cl ${mesher_files} ${dir}/entry.cl ${mesher_entry})
+    voxray_opencl_embed(mesher ${mesher_cl})
+    voxray_opencl_check(mesher ${mesher_cl} mesher_checked)
     set(includes "")
     set(rows "")
     foreach(name ${ARGN})
@@ -61,6 +69,7 @@ function(voxray_opencl_finish)
 "// Generated from the voxray_add_structure calls (backends/opencl/backend.cmake): do not edit.
 #pragma once
 #include \"voxray/generated/opencl_commit.hpp\"
+#include \"voxray/generated/opencl_mesher.hpp\"
 @includes@#include \"voxray/opencl/program_source.hpp\"
 
 namespace voxray::opencl_detail {
@@ -68,12 +77,13 @@ namespace voxray::opencl_detail {
 inline constexpr program_source registered_programs[] = {
 @rows@};
 inline constexpr program_source commit_program{\"commit\", voxray_opencl_commit};
+inline constexpr program_source mesher_program{\"mesher\", voxray_opencl_mesher};
 
 }  // namespace voxray::opencl_detail
 " @ONLY)
     get_property(headers GLOBAL PROPERTY VOXRAY_OPENCL_HEADERS)
     # ALL: the headers must exist before `cmake --install`, even if no test was built.
-    add_custom_target(voxray_opencl_programs ALL DEPENDS ${headers})
+    add_custom_target(voxray_opencl_programs ALL DEPENDS ${headers} ${mesher_checked})
     # Interface libraries pass their dependencies on to whoever links them.
     add_dependencies(voxray_opencl voxray_opencl_programs)
     if(VOXRAY_INSTALL)

@@ -69,6 +69,12 @@ function(voxray_vulkan_finish)
         ${PROJECT_SOURCE_DIR}/include/voxray/kernels/prelude.h ${PROJECT_SOURCE_DIR}/include/voxray/sync/commit.h
         ${dir}/shaders/commit.glsl)
     voxray_vulkan_compile(${comp} commit "")
+    # The mesher kernel (meshing/kernel.h, voxray/vulkan/chunk_mesher.hpp): passes only.
+    voxray_kernel_files(mesher_files meshing/kernel.h)
+    set(mesher ${VOXRAY_GENERATED}/vulkan/mesher_passes.comp)
+    voxray_flatten(OUTPUT ${mesher} LINE_MARKERS FILES ${dir}/shaders/preamble.glsl ${dir}/shaders/dialect.glsl
+        ${mesher_files} ${dir}/shaders/pass_entry.glsl)
+    voxray_vulkan_compile(${mesher} mesher_passes "-DVX_PASS=vx_mesher_pass")
     # The raster paths (voxray/vulkan/chunk_raster.hpp, triangle_raster.hpp): a vertex and a
     # fragment shader each, over the dialect, the vertex side of meshing/pop.h and the
     # frame's push constants (shaders/raster_frame.glsl).

@@ -14,11 +14,14 @@ for scene in builtin:terrain64 builtin:noise50 "$data/vox/minecraft_tree.vox"; d
     out=$("$tool" check "$scene" --mesh --mesh-views 300 2>/dev/null) || fail "check --mesh $scene: exit $?"
     last=$(tail -n 1 <<< "$out")
     [[ $last =~ ": 0 mismatches"$ ]] && echo "ok   $last" || fail "check --mesh $scene: last line '$last'"
+    kernels=$(grep -c "^mesher kernel on .*, 0 differing" <<< "$out" || true)
+    [[ $kernels == 3 ]] && echo "ok   mesher kernel equal on 3 backends" ||
+        fail "check --mesh $scene: mesher kernel equal on $kernels backends, not 3"
     raster=$(grep "^raster at level 0" <<< "$out" || true)
     [[ $raster =~ "; 0 mismatches" ]] && echo "ok   $raster" || fail "check --mesh $scene: raster line '$raster'"
 done
 
-"$tool" mesh-bench builtin:sphere30 builtin:checker --seconds 0.02 --json "$work/mesh.jsonl" > /dev/null 2>&1 ||
+"$tool" mesh-bench builtin:sphere30 builtin:checker --seconds 0.02 --kernel-runs 1 --json "$work/mesh.jsonl" > /dev/null 2>&1 ||
     fail "mesh-bench: exit $?"
 python3 - "$work/mesh.jsonl" <<'PY' || fail "mesh-bench rows"
 import json, sys
@@ -32,6 +35,9 @@ for r in rows:
     assert not missing, missing
     assert r["bytes_per_quad"] == 8 and r["faces"] >= r["quads"] > 0, r
 assert rows[1]["faces"] == rows[1]["quads"] == 64 ** 3 // 2 * 6, rows[1]  # a checkerboard merges nothing
+for r in rows:  # the mesher kernel on every backend, equal to the CPU mesher
+    assert sorted(k["backend"] for k in r["kernel"]) == ["cpu-scalar", "opencl", "vulkan"], r["kernel"]
+    assert all(k["equal_to_cpu"] and k["us_per_chunk"] > 0 for k in r["kernel"]), r["kernel"]
 for r in rows:  # remeshing after edits, on both editable structures
     for structure in ("brickmap", "naadf"):
         f = r["remesh"][structure]

@@ -5,7 +5,8 @@
 // (bytes -> bits) and the reading of chunks from the model are timed apart, as the anchors
 // leave them out. Throughput runs whole chunks on 1 and on --threads threads. The peer,
 // meshoptimizer simplifying to each level's triangle count, runs on up to 8 chunks. Then
-// remeshing after --edits random edits on the brickmap and NAADF (mesh_remesh.hpp).
+// remeshing after --edits random edits on the brickmap and NAADF (mesh_remesh.hpp), and the
+// mesher kernel on every backend (meshing/kernel.h) on up to 8 chunks, against the CPU's words.
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
@@ -20,6 +21,7 @@
 #include "output.hpp"
 #include "scene.hpp"
 #include "timing.hpp"
+#include "voxray/meshing/kernel_meshers.hpp"
 #include "voxray/meshing/occupancy.hpp"
 
 namespace voxray::tool {
@@ -32,6 +34,7 @@ struct mesh_bench_options {
     double seconds = 0.4;  // timing budget per scene and configuration
     std::size_t max_chunks = 256;
     int edits = 20;  // rounds of remeshing after one random edit, on the brickmap and NAADF
+    int kernel_runs = 3;  // timed runs of the mesher kernel on each backend (after one untimed)
     std::string json;
 };
 
@@ -87,6 +90,31 @@ double occupancy_us(const meshing::chunk_voxels& c) {
     return percentile(samples, 0.5);
 }
 
+// The mesher kernel on every backend over `chunks` at once (AO off, POP on), meshes read
+// back: wall ms of the median run, per chunk, and whether the words equal the CPU's `cpu`.
+nlohmann::json kernel_figures(const std::vector<meshing::chunk_voxels>& chunks,
+                              const std::vector<meshing::chunk_mesh>& cpu, int runs) {
+    nlohmann::json rows = nlohmann::json::array();
+    for_each_type(meshing::kernel_meshers{}, [&]<class Mesher>() {
+        Mesher kernel;
+        std::vector<meshing::chunk_mesh> got = kernel.mesh(chunks);  // untimed: builds the program
+        bool equal = true;
+        for (std::size_t i = 0; i < chunks.size(); ++i)
+            equal = equal && got[i].words == cpu[i].words && got[i].table == cpu[i].table;
+        std::vector<double> ms;
+        for (int run = 0; run < runs; ++run) {
+            auto start = std::chrono::steady_clock::now();
+            kernel.mesh(chunks);
+            ms.push_back(seconds_since(start) * 1e3);
+        }
+        double median = percentile(ms, 0.5);
+        rows.push_back({{"backend", Mesher::backend_name()}, {"device", kernel.device_name()}, {"chunks", chunks.size()},
+                        {"runs", runs}, {"ms_median", median}, {"us_per_chunk", median * 1e3 / double(chunks.size())},
+                        {"equal_to_cpu", equal}});
+    });
+    return rows;
+}
+
 nlohmann::json bench_scene(const std::string& spec, const mesh_bench_options& o) {
     voxel_model model = load_scene(spec, o.scene);
     std::vector<double> read_us;
@@ -138,6 +166,11 @@ nlohmann::json bench_scene(const std::string& spec, const mesh_bench_options& o)
     std::fprintf(stderr, "remeshing after %d edits on the brickmap and NAADF ...\n", o.edits);
     nlohmann::json remesh = remesh_figures(model, o.edits);
 
+    std::size_t kernel_chunks = std::min<std::size_t>(8, chunks.size());
+    std::fprintf(stderr, "the mesher kernel on every backend, %zu chunk(s) ...\n", kernel_chunks);
+    nlohmann::json kernel = kernel_figures({chunks.begin(), chunks.begin() + std::ptrdiff_t(kernel_chunks)},
+                                           {before.begin(), before.begin() + std::ptrdiff_t(kernel_chunks)}, o.kernel_runs);
+
     double median = percentile(pop, 0.5), n = double(chunks.size());
     double one = chunks_per_second(chunks, 1, median * 1e-6, o.seconds);
     double many = chunks_per_second(chunks, o.threads, median * 1e-6, o.seconds);
@@ -176,7 +209,8 @@ nlohmann::json bench_scene(const std::string& spec, const mesh_bench_options& o)
             {"thread_scaling", many / one},
             {"meshoptimizer_chunks", peer_input.size()},
             {"meshoptimizer", peer},
-            {"remesh", remesh}};
+            {"remesh", remesh},
+            {"kernel", kernel}};
 }
 
 int mesh_bench(const mesh_bench_options& o) {
@@ -216,6 +250,8 @@ command add_mesh_bench(CLI::App& parent) {
         ->check(CLI::Range(std::size_t(1), std::size_t(1) << 20))->capture_default_str();
     app->add_option("--edits", o->edits, "rounds of one random edit, then remeshing, on the brickmap and NAADF")
         ->check(CLI::Range(0, 100000))->capture_default_str();
+    app->add_option("--kernel-runs", o->kernel_runs, "timed runs of the mesher kernel on each backend")
+        ->check(CLI::Range(1, 1000))->capture_default_str();
     app->add_option("--json", o->json, "write one JSON line per scene after a header line");
     return {app, [o] { return mesh_bench(*o); }};
 }

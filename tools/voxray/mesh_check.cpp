@@ -5,6 +5,7 @@
 //    leaving every plane's coverage as it was;
 //  - shared vertices and T-vertices after morphing over --mesh-views random views (a
 //    sample of at most 5,000 shared vertices and 20,000 T-junctions on large scenes);
+//  - the mesher kernel on every backend against the CPU mesher, word for word;
 //  - the Vulkan raster path at level 0 against the ray tracer's primary hits (mesh_raster.hpp).
 #include "mesh_check.hpp"
 
@@ -15,6 +16,7 @@
 #include "mesh_scene.hpp"
 #include "voxray/check/mesh_cracks.hpp"
 #include "voxray/check/mesh_faces.hpp"
+#include "voxray/meshing/kernel_meshers.hpp"
 
 namespace voxray::tool {
 
@@ -26,6 +28,36 @@ void keep_sample(std::vector<T>& v, std::size_t most, std::uint64_t seed) {
     scenes::rng g{seed};
     for (std::size_t i = 0; i < most; ++i) std::swap(v[i], v[i + std::size_t(g.next() % (v.size() - i))]);
     v.resize(most);
+}
+
+// The chunks the mesher kernel gives on each backend (meshing/kernel.h) against the CPU
+// mesher's `meshes` (AO on, before the squashed-face pass): chunks whose words or table differ.
+std::uint64_t check_kernel(const voxel_model& model, const std::vector<glm::ivec3>& origins,
+                           const std::vector<meshing::chunk_mesh>& meshes) {
+    constexpr std::size_t batch = 8;
+    std::uint64_t differing_all = 0;
+    for_each_type(meshing::kernel_meshers{}, [&]<class Mesher>() {
+        Mesher kernel({.ambient_occlusion = true});
+        std::uint64_t differing = 0;
+        std::vector<meshing::chunk_voxels> chunks;
+        std::vector<std::uint8_t> scratch;
+        for (std::size_t first = 0; first < origins.size(); first += batch) {
+            std::size_t n = std::min(batch, origins.size() - first);
+            chunks.resize(n);
+            std::uint32_t most = 1;  // the frame only as large as this batch needs
+            for (std::size_t i = 0; i < n; ++i) {
+                meshing::fill_chunk(model, origins[first + i], chunks[i], scratch);
+                most = std::max(most, meshes[first + i].quad_count());
+            }
+            std::vector<meshing::chunk_mesh> got = kernel.mesh(chunks, most);
+            for (std::size_t i = 0; i < n; ++i)
+                differing += got[i].words != meshes[first + i].words || got[i].table != meshes[first + i].table;
+        }
+        std::printf("mesher kernel on %s: %zu chunks, %llu differing from the CPU mesher\n", kernel.device_name().c_str(),
+                    origins.size(), (unsigned long long)differing);
+        differing_all += differing;
+    });
+    return differing_all;
 }
 
 }  // namespace
@@ -58,6 +90,8 @@ std::uint64_t check_mesh(const voxel_model& model, const mesh_check_options& o) 
     std::printf("canonical faces: %zu chunks, %llu faces: %llu mismatches; POP order: %llu chunks wrong\n", origins.size(),
                 (unsigned long long)faces, (unsigned long long)canonical, (unsigned long long)order);
 
+    std::uint64_t kernel = check_kernel(model, origins, meshes);
+
     std::uint64_t open = 0, coverage = 0;
     for (int level = 0; level < VX_MESH_LEVELS; ++level) open += check::open_lines(meshes, level);
     for (auto& m : meshes) {
@@ -79,7 +113,7 @@ std::uint64_t check_mesh(const voxel_model& model, const mesh_check_options& o) 
                 (unsigned long long)morphs.views, cases.shared.size(), all_shared, cases.t_junctions.size(), all_t,
                 (unsigned long long)morphs.split_vertices, (unsigned long long)morphs.t_vertices_off);
     std::uint64_t raster = check_raster(model, meshes, o.raster_views);
-    return canonical + order + open + coverage + morphs.split_vertices + morphs.t_vertices_off + raster;
+    return canonical + order + kernel + open + coverage + morphs.split_vertices + morphs.t_vertices_off + raster;
 }
 
 }  // namespace voxray::tool

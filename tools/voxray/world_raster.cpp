@@ -50,8 +50,11 @@ bool same_boxes(const std::vector<box3i>& a, const std::vector<box3i>& b) {
 }  // namespace
 
 struct world_raster::state {
-    state(const palette& p, bool c, int u, float b) : pal(p), colours(c), up_axis(u), lod_bias(b) {}
+    state(const palette& p, bool c, int u, float b) : pal(p), colours(c), up_axis(u), lod_bias(b) {
+        for (int i = 0; i < palette::size; ++i) rgba8[std::size_t(i)] = pack_rgba(pal[std::uint8_t(i)].colour);
+    }
     palette pal;
+    std::vector<std::uint32_t> rgba8 = std::vector<std::uint32_t>(palette::size);  // the raster's colour table
     bool colours;
     int up_axis;
     float lod_bias;
@@ -64,6 +67,7 @@ struct world_raster::state {
         std::vector<meshing::chunk_mesh> meshes;
     };
     std::map<chunk_key, meshed, chunk_key_less> cache;
+    bool uploaded = false;  // the rasterizer holds the cache's meshes
 };
 
 world_raster::world_raster(const palette& pal, bool colours, int up_axis, float lod_bias)
@@ -115,18 +119,21 @@ world_raster_frame world_raster::draw(const streamed_world& world, const camera&
         next[p.key] = std::move(m);
         ++out.chunks_meshed;
     }
+    // Every kept chunk came from the cache: the shown set changed only if one was meshed or dropped.
+    bool changed = !s.uploaded || out.chunks_meshed > 0 || next.size() != s.cache.size();
     s.cache = std::move(next);
-    std::vector<meshing::chunk_mesh> meshes;
-    std::vector<chunk_placement> placements;
-    for (auto& [key, m] : s.cache)
-        for (auto& mesh : m.meshes) {
-            meshes.push_back(mesh);
-            placements.push_back({chunk_world_box(grid, key).min, key.lod});
-        }
+    if (changed) {
+        std::vector<meshing::chunk_mesh> meshes;
+        std::vector<chunk_placement> placements;
+        for (auto& [key, m] : s.cache)
+            for (auto& mesh : m.meshes) {
+                meshes.push_back(mesh);
+                placements.push_back({chunk_world_box(grid, key).min, key.lod});
+            }
+        s.raster.upload(meshes, s.rgba8, placements);
+        s.uploaded = true;
+    }
     out.mesh_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-    std::vector<std::uint32_t> colours(palette::size);
-    for (int i = 0; i < palette::size; ++i) colours[std::size_t(i)] = pack_rgba(s.pal[std::uint8_t(i)].colour);
-    s.raster.upload(meshes, colours, placements);
     raster_view v{.cam = cam, .width = width, .height = height, .lod_bias = s.lod_bias,
                   .to_sun = sun_direction(s.up_axis)};
     raster_frame f = s.raster.draw(v);

@@ -18,7 +18,8 @@ struct world_raster_frame {
     std::uint64_t quads = 0;           // quads drawn
     std::uint64_t chunks_meshed = 0;   // world chunks meshed this frame (newly shown)
     std::uint64_t chunks_shown = 0;
-    double mesh_ms = 0, draw_ms = 0;   // meshing newly shown chunks; the draw on the device
+    // Meshing newly shown chunks, and uploading them when the shown set changed; the draw on the device.
+    double mesh_ms = 0, draw_ms = 0;
 };
 
 class world_raster {

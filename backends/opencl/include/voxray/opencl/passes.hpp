@@ -23,6 +23,10 @@ namespace voxray::opencl_detail {
 
 class pass_runner {
 public:
+    // The world's frame passes keep the nearest hit by a 64-bit atomic max; other pass
+    // programs (the mesher kernel) need no 64-bit atomics.
+    explicit pass_runner(bool needs_int64_atomics = true) : needs_int64_atomics_(needs_int64_atomics) {}
+
     // Room for `words` frame words (grow-only; growing drops the old contents).
     void reserve(const device_context& ctx, std::size_t words) {
         std::uint64_t bytes = std::max<std::uint64_t>(std::uint64_t(words) * 4, 8);
@@ -49,6 +53,7 @@ private:
                  " words");
     }
 
+    bool needs_int64_atomics_;
     kernel_handle kernel_;  // vx_pass_<name>, looked up on the first pass
     device_buffer frame_{CL_MEM_READ_WRITE, "the frame buffer"};
 };

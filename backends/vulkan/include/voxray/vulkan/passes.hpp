@@ -33,6 +33,10 @@ static_assert(sizeof(pass_push) == 32 && offsetof(pass_push, first) == 16 && off
 
 class pass_runner {
 public:
+    // The world's frame passes keep the nearest hit by a 64-bit atomic max; other pass
+    // programs (the mesher kernel) need no 64-bit atomics.
+    explicit pass_runner(bool needs_int64_atomics = true) : needs_int64_atomics_(needs_int64_atomics) {}
+
     // Room for `words` frame words (grow-only; growing drops the old contents).
     void reserve(const context& ctx, std::size_t words) {
         VkDeviceSize bytes = std::max<VkDeviceSize>(VkDeviceSize(words) * 4, 8);
@@ -81,7 +85,7 @@ public:
              std::uint32_t pass, std::uint64_t count) {
         if (!frame_.handle()) fail("vulkan: a frame pass ran before the frame buffer was reserved");
         if (!pipeline_) {
-            if (!ctx.int64_atomics())
+            if (needs_int64_atomics_ && !ctx.int64_atomics())
                 fail("vulkan: the frame passes need 64-bit buffer atomics (shaderInt64 and shaderBufferInt64Atomics), "
                      "which ", ctx.owns_device() ? "the device " + ctx.name() + " lacks"
                                                  : std::string("voxray cannot confirm on the application's device"));
@@ -105,6 +109,7 @@ public:
     }
 
     VkDeviceSize bytes() const { return frame_.handle() ? frame_.size() : 0; }
+    VkDeviceAddress address() const { return frame_.handle() ? frame_.address() : 0; }
 
 private:
     void check_range(std::size_t at, std::size_t n) const {
@@ -112,6 +117,7 @@ private:
             fail("vulkan: frame words [", at, ", ", at + n, ") outside the frame buffer's ", bytes() / 4, " words");
     }
 
+    bool needs_int64_atomics_;
     std::unique_ptr<compute_pipeline> pipeline_;
     buffer frame_;
 };

@@ -38,8 +38,9 @@ VOXRAY_HOST_INLINE void pass_runner::run(const device_context& ctx, cl_command_q
         fail("OpenCL: ", count, " items in one frame pass, more than its 32-bit count allows");
     if (!kernel_) {
         // The visibility buffer's nearest hit is a 64-bit atomic max (world/frame/passes.h).
-        if (device_string(ctx.device(), CL_DEVICE_EXTENSIONS).find("cl_khr_int64_extended_atomics") ==
-            std::string::npos)
+        if (needs_int64_atomics_ &&
+            device_string(ctx.device(), CL_DEVICE_EXTENSIONS).find("cl_khr_int64_extended_atomics") ==
+                std::string::npos)
             fail("OpenCL: the frame passes need cl_khr_int64_extended_atomics, which ", ctx.device_name(),
                  " does not offer");
         kernel_ = create_kernel(program, entry);
