@@ -3,7 +3,8 @@
 # backend to PNG, run the benchmark matrix (every structure and baseline: Embree, NanoVDB)
 # into a results file and print its table, the editing figures of brickmap and NAADF, and
 # an open world built chunk by chunk and streamed along a camera path, traced ray by ray
-# and drawn by the GPU-driven passes; then chunk meshes with POP levels of detail.
+# and drawn by the GPU-driven passes; then chunk meshes with POP levels of detail, coloured
+# meshes and moving entities.
 set -euo pipefail
 source "$(dirname "${BASH_SOURCE[0]}")/setup.sh"
 install_packages
@@ -45,18 +46,25 @@ echo "== the same world's shown chunks meshed at their LOD and drawn by the Vulk
 "$VOXRAY" world-fly "$OUT/world" --backend vulkan --frames 2 --factor 2.0 --raster --width 640 --height 360 \
     --png-dir "$OUT/world_raster_frames" | grep "raster:"
 echo "== chunk meshes with POP levels of detail: the one-chunk anchors and $SCENE, then face sets and crack tests"
-"$VOXRAY" mesh-bench builtin:sphere30 builtin:terrain64 builtin:checker "$SCENE" --seconds 0.2 --json "$OUT/mesh.jsonl" 2>/dev/null
+"$VOXRAY" mesh-bench builtin:sphere30 builtin:terrain64 builtin:checker "$SCENE" --seconds 0.2 --kernel-runs 1 \
+    --json "$OUT/mesh.jsonl" 2>/dev/null
 "$VOXRAY" mesh builtin:terrain64 --level 2 --gltf "$OUT/terrain64_level2.glb" --ply "$OUT/terrain64_level2.ply" 2>/dev/null | tail -n 8
 echo "== $SCENE's chunk meshes drawn by the Vulkan raster path: level 0, then POP levels of detail (LOD bias 5)"
 "$VOXRAY" mesh "$SCENE" --png "$OUT/mesh_raster_level0.png" --width 960 --height 540 2>/dev/null | tail -n 1
 "$VOXRAY" mesh "$SCENE" --png "$OUT/mesh_raster_bias5.png" --lod-bias 5 --width 960 --height 540 2>/dev/null | tail -n 1
 "$VOXRAY" check "$SCENE" --mesh --mesh-views 1000 2>/dev/null | tail -n 2 || status=1
+echo "== coloured meshes (glTF with textures and cut-out leaves) voxelized with the colours they cover"
+DATA="${VOXRAY_DATA_DIR:-$ROOT/../shared/data}"
+"$VOXRAY" render "$DATA/mesh/flight_helmet/FlightHelmet.gltf" --resolution 384 --view 1 --width 960 --height 540 \
+    --out "$OUT/coloured_helmet.png" 2>/dev/null
+"$VOXRAY" render "$DATA/mesh/realistic_trees/scene.gltf" --resolution 512 --width 960 --height 540 \
+    --out "$OUT/coloured_trees.png" 2>/dev/null
 echo "== moving entities: 3,000 deer and trees (shared models) over builtin:terrain:512, 6 frames of their motion (naadf, vulkan), then checked"
 /usr/bin/python3 "$ROOT/scripts/make_entity_scene.py" "$OUT/herd.json" --world builtin:terrain:512 --count 3000 \
-    --extent 512 512 131 --data "${VOXRAY_DATA_DIR:-$ROOT/../shared/data}"
+    --extent 512 512 131 --data "$DATA"
 mkdir -p "$OUT/entities"
 "$VOXRAY" render "$OUT/herd.json" --frames 6 --structure naadf --backend vulkan --width 960 --height 540 \
     --out "$OUT/entities/frame.png" 2>/dev/null
 "$VOXRAY" check "$OUT/herd.json" --frames 2 --rays 20000 --backends cpu,vulkan 2>/dev/null | tail -n 5 || status=1
-echo "== images (entities/frame_*.png too), results.jsonl, mesh.jsonl, terrain64_level2.glb, mesh_raster_*.png, world_raster_frames/raster_and_traced_*.png, plots (mrays.png, speed_vs_memory.png, steps.png) and table.md in $OUT"
+echo "== images (entities/frame_*.png, coloured_*.png too), results.jsonl, mesh.jsonl, terrain64_level2.glb, mesh_raster_*.png, world_raster_frames/raster_and_traced_*.png, plots (mrays.png, speed_vs_memory.png, steps.png) and table.md in $OUT"
 exit ${status}

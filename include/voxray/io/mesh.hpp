@@ -1,6 +1,7 @@
 // A triangle soup as the mesh readers produce it and the voxelizer consumes it:
 // shared positions, index triples, and one group id per triangle (an OBJ 'g'/'o'
-// name, or the whole file for PLY) that becomes a palette colour.
+// name, or the whole file for PLY) that becomes a palette colour, unless the mesh has a
+// coloured surface (io/mesh_surface.hpp), whose colours the voxels then take.
 #pragma once
 #include <cmath>
 #include <cstdint>
@@ -11,6 +12,7 @@
 #include <glm/vec3.hpp>
 
 #include "voxray/core/error.hpp"
+#include "voxray/io/mesh_surface.hpp"
 
 namespace voxray::io {
 
@@ -25,6 +27,7 @@ struct triangle_mesh {
     std::vector<glm::u32vec3> triangles;     // indices into positions, all in range
     std::vector<std::uint32_t> groups;       // one per triangle (or empty: all group 0)
     std::vector<std::string> group_names;    // at least one entry once a triangle exists
+    mesh_surface surface;                    // materials, texture coordinates; empty: no colour
 
     std::size_t triangle_count() const { return triangles.size(); }
 
@@ -43,6 +46,7 @@ struct triangle_mesh {
                 if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z))
                     fail("mesh vertex ", i, " has a non-finite coordinate");
             }
+        surface.validate(triangles.size());
     }
 
     std::uint32_t group_of(std::size_t triangle) const { return groups.empty() ? 0 : groups[triangle]; }

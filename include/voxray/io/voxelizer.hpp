@@ -15,6 +15,11 @@
 // Within a tile triangles run in file order and the first one to reach a voxel
 // gives it its colour, so the result does not depend on the thread count.
 //
+// Colour: one palette entry per group (group_palette.hpp), or, for a mesh with a coloured
+// surface (io/mesh_surface.hpp), the colour of what each voxel covers (io/surface_sample.hpp;
+// a triangle whose alpha rule drops it there leaves the voxel to the next one), then a
+// palette of those colours by median cut (io/colour_palette.hpp).
+//
 // Work is bounded before it starts (issue 12, item 10): a triangle that repeats an
 // earlier one exactly (the same three positions in the same order, whatever the
 // indices) can change nothing, so it is dropped; and the cells the rest may test are
@@ -38,8 +43,10 @@
 #include <glm/vec3.hpp>
 
 #include "voxray/core/error.hpp"
+#include "voxray/io/colour_palette.hpp"
 #include "voxray/io/group_palette.hpp"
 #include "voxray/io/mesh.hpp"
+#include "voxray/io/surface_sample.hpp"
 #include "voxray/io/triangle_box.hpp"
 #include "voxray/model/build_threads.hpp"
 #include "voxray/model/voxel_model.hpp"
@@ -284,9 +291,29 @@ inline tile_bins bin_triangles(const std::vector<glm::dvec3>& vox, const triangl
     return bins;
 }
 
+// Coloured meshes: a palette of the voxels' colours (median cut, 255 entries), and each
+// voxel's material set to its colour's entry. `Results` are the threads' placed chunks.
+template <class Results>
+void colour_voxels(Results& results, palette& pal) {
+    std::unordered_map<std::uint32_t, std::uint64_t> histogram;
+    for (auto& r : results)
+        for (auto& pc : r)
+            for (std::size_t i = 0; i < pc.colours.size(); ++i)
+                if (pc.data->voxels[i]) ++histogram[pc.colours[i]];
+    std::vector<colour_count> counts;
+    for (auto [rgb, n] : histogram) counts.push_back({rgb, n});
+    median_cut_palette cut = median_cut(std::move(counts), 255);
+    for (std::size_t e = 0; e < cut.entries.size(); ++e) pal[std::uint8_t(e + 1)].colour = cut.entries[e];
+    for (auto& r : results)
+        for (auto& pc : r)
+            for (std::size_t i = 0; i < pc.colours.size(); ++i)
+                if (pc.data->voxels[i]) pc.data->voxels[i] = std::uint8_t(1 + cut.entry.at(pc.colours[i]));
+}
+
 }  // namespace detail
 
-// Voxelizes the surface of `mesh`. Palette: one colour per group (group_palette.hpp).
+// Voxelizes the surface of `mesh`. Palette: one colour per group (group_palette.hpp), or
+// the surface's colours (see the top of this file).
 // The model's up_axis is left for the caller (load_mesh_model sets 1, Y up).
 inline voxel_model voxelize(const triangle_mesh& mesh, const voxelize_options& opt = {},
                             voxelize_stats* stats_out = nullptr) {
@@ -325,7 +352,9 @@ inline voxel_model voxelize(const triangle_mesh& mesh, const voxelize_options& o
     struct placed_chunk {
         glm::ivec3 coord;
         chunk_ptr data;
+        std::vector<std::uint32_t> colours;  // coloured meshes: sRGB r | g << 8 | b << 16 per voxel
     };
+    const bool coloured = mesh.surface.coloured();
     unsigned threads = resolve_build_threads(opt.threads, order.size());
     std::vector<std::vector<placed_chunk>> results(threads);
     std::atomic<std::size_t> next{0};
@@ -333,6 +362,7 @@ inline voxel_model voxelize(const triangle_mesh& mesh, const voxelize_options& o
     run_build_threads(threads, [&](unsigned id) {
         constexpr int cv = voxel_model::chunk_voxels;
         std::vector<std::uint8_t> buffer(std::size_t(tile_chunk_count) * cv, 0);  // chunk-major
+        std::vector<std::uint32_t> colours(coloured ? buffer.size() : 0);
         std::vector<int> touched;
         std::vector<char> is_touched(tile_chunk_count, 0);
         std::uint64_t tested = 0;
@@ -344,12 +374,20 @@ inline voxel_model voxelize(const triangle_mesh& mesh, const voxelize_options& o
                 std::uint32_t t = bins.ids[i];
                 auto& ix = mesh.triangles[t];
                 std::uint8_t colour = group_palette_index(mesh.group_of(t));
-                triangle_cell_test test(vox[ix.x], vox[ix.y], vox[ix.z]);
+                const glm::dvec3 corners[3] = {vox[ix.x], vox[ix.y], vox[ix.z]};
+                triangle_cell_test test(corners[0], corners[1], corners[2]);
                 rasterize_triangle(test, origin, hi, &tested, [&](glm::ivec3 cell) {
                     glm::ivec3 l = (cell - origin) >> voxel_model::chunk_bits;
                     int lc = l.x | (l.y << tile_chunks_bits) | (l.z << (2 * tile_chunks_bits));
-                    auto& b = buffer[std::size_t(lc) * cv + voxel_model::local_index(cell)];
-                    if (!b) b = colour;  // first triangle in file order wins
+                    std::size_t at = std::size_t(lc) * cv + voxel_model::local_index(cell);
+                    auto& b = buffer[at];
+                    if (b) return;  // first triangle in file order wins
+                    if (coloured) {
+                        std::optional<rgba> c = voxel_colour(mesh.surface, t, corners, cell);
+                        if (!c) return;  // transparent here: the voxel stays for another triangle
+                        colours[at] = std::uint32_t(c->r) | std::uint32_t(c->g) << 8 | std::uint32_t(c->b) << 16;
+                    }
+                    b = colour;
                     if (!is_touched[lc]) { is_touched[lc] = 1; touched.push_back(lc); }
                 });
             }
@@ -358,9 +396,14 @@ inline voxel_model voxelize(const triangle_mesh& mesh, const voxelize_options& o
                 std::uint8_t* src = buffer.data() + std::size_t(lc) * cv;
                 std::memcpy(c->voxels.data(), src, cv);
                 std::memset(src, 0, cv);
+                std::vector<std::uint32_t> chunk_colours;
+                if (coloured) {
+                    auto first = colours.begin() + std::ptrdiff_t(std::size_t(lc) * cv);
+                    chunk_colours.assign(first, first + cv);
+                }
                 is_touched[lc] = 0;
                 glm::ivec3 l{lc & 7, (lc >> 3) & 7, lc >> 6};
-                results[id].push_back({(origin >> voxel_model::chunk_bits) + l, std::move(c)});
+                results[id].push_back({(origin >> voxel_model::chunk_bits) + l, std::move(c), std::move(chunk_colours)});
             }
             touched.clear();
         }
@@ -374,9 +417,10 @@ inline voxel_model voxelize(const triangle_mesh& mesh, const voxelize_options& o
     std::size_t total = 0;
     for (auto& r : results) total += r.size();
     model.reserve_chunks(total);
+    if (coloured) colour_voxels(results, model.palette());
     for (auto& r : results)
         for (auto& pc : r) model.replace_chunk(pc.coord, std::move(pc.data));
-    assign_group_palette(model.palette(), mesh.group_names);
+    if (!coloured) assign_group_palette(model.palette(), mesh.group_names);
     return model;
 }
 
