@@ -30,8 +30,9 @@ if(NOT backends)
     message(FATAL_ERROR "no voxray backend target was found")
 endif()
 
-# Every public header of the core and of the backends linked here (not the Embree and
-# NanoVDB baselines nor the MPI component, not the generated tables that the backends include themselves).
+# Every public header of the core and of the backends and the glTF component linked here (not
+# the Embree and NanoVDB baselines nor the MPI component, not the generated tables that the
+# backends include themselves).
 if(VOXRAY_SOURCE_DIR)
     file(GLOB roots ${VOXRAY_SOURCE_DIR}/include ${VOXRAY_SOURCE_DIR}/backends/*/include)
 else()
@@ -41,7 +42,7 @@ set(includes "#include \"voxray/version.hpp\"\n")
 foreach(root ${roots})
     file(GLOB_RECURSE headers RELATIVE ${root} ${root}/voxray/*.hpp)
     foreach(h ${headers})
-        string(REGEX MATCH "^voxray/(cpu|opencl|vulkan)" backend "${h}")
+        string(REGEX MATCH "^voxray/(cpu|opencl|vulkan|gltf)" backend "${h}")
         if(h MATCHES "^voxray/(generated|embree|nanovdb|mpi)/" OR (backend AND NOT TARGET voxray::${CMAKE_MATCH_1}))
             continue()
         endif()
@@ -58,6 +59,9 @@ file(CONFIGURE OUTPUT ${CMAKE_CURRENT_BINARY_DIR}/all_headers.cpp CONTENT "@incl
 set(src ${CMAKE_CURRENT_LIST_DIR}/consumer)
 add_executable(consumer ${src}/main.cpp ${CMAKE_CURRENT_BINARY_DIR}/all_headers.cpp)
 target_link_libraries(consumer PRIVATE voxray::voxray ${backends})
+if(TARGET voxray::gltf)  # the coloured-mesh readers' headers are in all_headers.cpp too
+    target_link_libraries(consumer PRIVATE voxray::gltf)
+endif()
 target_compile_definitions(consumer PRIVATE ${defines} EXPECT_VERSION="${EXPECT_VERSION}")
 target_compile_options(consumer PRIVATE ${strict})
 
