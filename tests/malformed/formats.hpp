@@ -262,6 +262,12 @@ inline void load_and_voxelize(const io::triangle_mesh& mesh) {
     mix(mesh.positions.data(), mesh.positions.size() * sizeof(mesh.positions[0]));
     mix(mesh.triangles.data(), mesh.triangles.size() * sizeof(mesh.triangles[0]));
     mix(mesh.groups.data(), mesh.groups.size() * sizeof(std::uint32_t));
+    mix(mesh.surface.triangle_materials.data(), mesh.surface.triangle_materials.size() * sizeof(std::uint32_t));
+    mix(mesh.surface.corner_uvs.data(), mesh.surface.corner_uvs.size() * sizeof(glm::vec2));
+    for (const auto& m : mesh.surface.materials) {
+        mix(&m.base_colour, sizeof m.base_colour);
+        mix(&m.alpha, sizeof m.alpha);
+    }
     if (seen.insert(h).second) (void)io::voxelize(mesh, {24, 1});
 }
 
@@ -276,6 +282,43 @@ inline input_format obj_format() {
     f.load = [](const bytes& b) {
         load_and_voxelize(io::parse_obj(std::string_view(reinterpret_cast<const char*>(b.data()), b.size()), "mutant.obj"));
     };
+    f.boundaries = [](const bytes& b) { return line_starts(b); };
+    return f;
+}
+
+// OBJ with materials (obj_options::materials): the mutant OBJ reads a fixed MTL; then the
+// MTL mutated under a fixed OBJ. Textures are named, not decoded (the core has no image
+// library), so the samples use colours and texture coordinates only.
+inline const char* coloured_obj_sample =
+    "mtllib c.mtl\nv 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0.5\nvt 0 0\nvt 1 0\nvt 1 1\nvt 0.5 1\n"
+    "usemtl red\nf 1/1 2/2 3/3\nusemtl glass\nf 1/1 3/3 4/4\nf -1/-1 -2/-2 -3/-3\n";
+inline const char* coloured_mtl_sample =
+    "# two materials\nnewmtl red\nKa 0 0 0\nKd 0.8 0.1 0.05\nd 1\nnewmtl glass\nKd 0.5 0.6 0.9\nTr 0.7\nillum 2\n";
+
+inline void load_coloured_obj(const std::string& obj, const std::string& mtl) {
+    auto dir = scratch_path("coloured_obj");
+    std::filesystem::create_directories(dir);
+    removed_at_exit cleanup{dir};
+    write_file(dir / "c.mtl", as_bytes(mtl));
+    load_and_voxelize(io::parse_obj(obj, "mutant.obj", {.materials = true}, dir));
+}
+
+inline input_format coloured_obj_format() {
+    input_format f;
+    f.name = "obj_mtl";
+    f.text = true;
+    f.samples.push_back(as_bytes(coloured_obj_sample));
+    f.load = [](const bytes& b) { load_coloured_obj(std::string(b.begin(), b.end()), coloured_mtl_sample); };
+    f.boundaries = [](const bytes& b) { return line_starts(b); };
+    return f;
+}
+
+inline input_format mtl_format() {
+    input_format f;
+    f.name = "mtl";
+    f.text = true;
+    f.samples.push_back(as_bytes(coloured_mtl_sample));
+    f.load = [](const bytes& b) { load_coloured_obj(coloured_obj_sample, std::string(b.begin(), b.end())); };
     f.boundaries = [](const bytes& b) { return line_starts(b); };
     return f;
 }
@@ -323,7 +366,8 @@ inline input_format ply_format() {
 
 // Every format the malformed-input test runs. Add a format here (one line).
 inline std::vector<input_format> all_formats() {
-    return {vox_format(), obj_format(), ply_format(), vxbm_format(), vxna_format(), vxck_format(), vxwm_format()};
+    return {vox_format(),  obj_format(),  coloured_obj_format(), mtl_format(), ply_format(),
+            vxbm_format(), vxna_format(), vxck_format(),         vxwm_format()};
 }
 
 }  // namespace voxray::test::malformed
