@@ -7,7 +7,7 @@
 #                  folders brickmap, naadf, svdag, world, entities and sync: the threaded
 #                  editing, builds, streaming and entity moves, and the incremental updates;
 #   ASan + UBSan   one build with every backend and one ctest over every CPU label (cpu,
-#                  io, mesh, meshing, malformed, brickmap, naadf, svdag, world, entities, sync, conformance,
+#                  io, mesh, meshing, appearance, malformed, brickmap, naadf, svdag, world, entities, sync, conformance,
 #                  nanovdb) and every test labelled opencl or vulkan (the backend tests,
 #                  both GPU conformance groups, the every-backend tests of sync, brickmap,
 #                  svdag and world).
@@ -24,7 +24,7 @@ echo "== ctest (all backends required)"
 export VOXRAY_REQUIRE_ALL_BACKENDS=1
 (cd "$BUILD_DIR" && ctest --output-on-failure -j"$(nproc)" --timeout 900)
 
-CPU_LABELS='^(cpu|io|mesh|meshing|malformed|brickmap|naadf|svdag|world|entities|sync|conformance|nanovdb)$'
+CPU_LABELS='^(cpu|io|mesh|meshing|appearance|malformed|brickmap|naadf|svdag|world|entities|sync|conformance|nanovdb)$'
 # Sanitizer builds: -O1 with line tables only, which compiles about twice as fast as -O2 -g.
 # PoCL's cache is the main build's: its kernels are compiled already.
 SANITIZED=(-DCMAKE_BUILD_TYPE=RelWithDebInfo "-DCMAKE_CXX_FLAGS_RELWITHDEBINFO=-O1 -g1 -DNDEBUG" -DVOXRAY_BUILD_TOOLS=OFF

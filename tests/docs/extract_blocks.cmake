@@ -12,7 +12,7 @@
 #   ```c++, ```cpp <anything else>: an error in the generated file, so the build names it.
 #
 # Blocks whose code (comments left out) names `vulkan` or `opencl` (or MPI: `MPI_`,
-# `voxray/mpi/`; glTF: `voxray/gltf/`) are compiled only when that backend (component) is built. `#line` directives point compiler messages at the document's lines.
+# `voxray/mpi/`; glTF: `voxray/gltf/`; Embree: `voxray/embree/`) are compiled only when that backend (component) is built. `#line` directives point compiler messages at the document's lines.
 #
 #   voxray_docs_extract(DOC <path under the repository> ROOT <repository> OUT <folder>
 #                       PREFIX <file name prefix> VULKAN <bool> OPENCL <bool> MPI <bool>
@@ -40,7 +40,7 @@ function(voxray_docs_write path content)
 endfunction()
 
 function(voxray_docs_extract)
-    cmake_parse_arguments(arg "" "DOC;ROOT;OUT;PREFIX;VULKAN;OPENCL;MPI;GLTF;SOURCES;REPORT" "" ${ARGN})
+    cmake_parse_arguments(arg "" "DOC;ROOT;OUT;PREFIX;VULKAN;OPENCL;MPI;GLTF;EMBREE;SOURCES;REPORT" "" ${ARGN})
     file(READ "${arg_ROOT}/${arg_DOC}" text)
     string(APPEND text "\n")
     file(MAKE_DIRECTORY "${arg_OUT}")
@@ -129,6 +129,8 @@ macro(_voxray_docs_block)
             set(needs "voxray::mpi")
         elseif(code MATCHES "voxray/gltf/" AND NOT arg_GLTF)
             set(needs "voxray::gltf")
+        elseif(code MATCHES "voxray/embree/" AND NOT arg_EMBREE)
+            set(needs "voxray::embree")
         endif()
         string(LENGTH "${index}" digits)
         set(name "${index}")

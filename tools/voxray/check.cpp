@@ -178,6 +178,9 @@ command add_check(CLI::App& parent) {
     app->add_flag("--mesh", o->mesh, "check the scene's chunk meshes instead: face sets, POP order, cracks");
     app->add_option("--mesh-views", o->mesh_options.views, "random views of the mesh crack tests")
         ->check(CLI::Range(1, 10000000))->capture_default_str();
+    app->add_option("--mesh-kernel-chunks", o->mesh_options.kernel_chunks,
+                    "most chunks (evenly spread) the mesher kernel is compared on, per backend")
+        ->check(CLI::Range(std::size_t(1), std::size_t(1) << 24))->capture_default_str();
     return {app, [o, rays] {
         o->mesh_options.seed = o->seed;
         o->rays_given = rays->count() > 0;

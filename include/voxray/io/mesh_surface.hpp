@@ -45,6 +45,7 @@ struct mesh_material {
     int alpha_texture = -1;       // a separate coverage texture (OBJ map_d: its first channel), or -1
     alpha_mode alpha = alpha_mode::opaque;
     float alpha_cutoff = 0.5f;
+    bool double_sided = false;    // seen from behind too (glTF doubleSided: leaf cards)
 
     // Whether the alpha test can drop parts of this material's triangles.
     bool cuts() const { return alpha != alpha_mode::opaque; }

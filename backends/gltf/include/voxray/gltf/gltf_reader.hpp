@@ -195,6 +195,7 @@ inline io::triangle_mesh read_gltf(const std::filesystem::path& path) {
         mat.alpha = gm.alphaMode == "MASK" ? io::alpha_mode::mask
                                            : (gm.alphaMode == "BLEND" ? io::alpha_mode::blend : io::alpha_mode::opaque);
         mat.alpha_cutoff = float(gm.alphaCutoff);
+        mat.double_sided = gm.doubleSided;
         s.materials.push_back(mat);
         mesh.group_names.push_back(mat.name);
     }

@@ -27,6 +27,7 @@
 
 #include "voxray/core/error.hpp"
 #include "voxray/embree/device.hpp"
+#include "voxray/embree/triangle_scene.hpp"
 #include "voxray/io/mesh.hpp"
 #include "voxray/io/voxelizer.hpp"
 #include "voxray/model/build_threads.hpp"
@@ -50,32 +51,7 @@ inline std::uint64_t fill_interior(voxel_model& model, const io::triangle_mesh& 
     auto grid = io::make_grid_map(mesh.bounds(), resolution);
 
     // The scene lives in voxel space, so rays and spans need no conversion.
-    device dev;
-    scene_handle scene(rtcNewScene(dev.handle()));
-    dev.check("rtcNewScene");
-    rtcSetSceneFlags(scene.get(), RTC_SCENE_FLAG_ROBUST);
-    RTCGeometry geom = rtcNewGeometry(dev.handle(), RTC_GEOMETRY_TYPE_TRIANGLE);
-    dev.check("rtcNewGeometry");
-    auto* vb = static_cast<float*>(rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
-                                                           3 * sizeof(float), mesh.positions.size()));
-    auto* ib = static_cast<unsigned*>(rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
-                                                              3 * sizeof(unsigned), mesh.triangles.size()));
-    if (!vb || !ib) {
-        rtcReleaseGeometry(geom);
-        dev.check("rtcSetNewGeometryBuffer");
-        fail("fill_interior: Embree could not allocate the mesh buffers");
-    }
-    for (std::size_t i = 0; i < mesh.positions.size(); ++i) {
-        auto p = grid.to_voxel(mesh.positions[i]);
-        for (int k = 0; k < 3; ++k) vb[3 * i + k] = float(p[k]);
-    }
-    for (std::size_t i = 0; i < mesh.triangles.size(); ++i)
-        for (int k = 0; k < 3; ++k) ib[3 * i + k] = mesh.triangles[i][k];
-    rtcCommitGeometry(geom);
-    rtcAttachGeometry(scene.get(), geom);
-    rtcReleaseGeometry(geom);
-    rtcCommitScene(scene.get());
-    dev.check("rtcCommitScene");
+    triangle_scene scene(mesh, grid);
 
     const int w = opt.axis, u = (w + 1) % 3, v = (w + 2) % 3;
     const int nu = grid.dims[u], nv = grid.dims[v], nw = grid.dims[w];
@@ -104,7 +80,7 @@ inline std::uint64_t fill_interior(voxel_model& model, const io::triangle_mesh& 
                     rh.ray.mask = ~0u;
                     rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
                     rtcInitIntersectContext(&ctx);
-                    rtcIntersect1(scene.get(), &ctx, &rh);
+                    rtcIntersect1(scene.handle(), &ctx, &rh);
                     if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) break;
                     hits.push_back(rh.ray.tfar - 1.0f);  // w coordinate of the crossing
                     // Past this hit by more than float rounding at this distance.

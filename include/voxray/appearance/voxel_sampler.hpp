@@ -1,0 +1,75 @@
+// What one voxel's sampling rays see of the original surface (the paper's section 3.2):
+// each ray's first hit inside the voxel, against any triangle. A front-facing hit (or any
+// hit on a double-sided material) gives a sample: the surface's normal turned towards the
+// ray, and its colour there (io/mesh_surface.hpp). A back-facing hit on a one-sided
+// material occludes without a sample. A hit where the alpha rule cuts the surface out
+// (leaf cards) lets the ray go on. A miss is a ray that passes.
+//
+// `Scene` traces the mesh in voxel space: first_hit(origin, direction, tnear, tfar) returning
+// an optional hit with t, triangle, barycentric and unit normal (embree/triangle_scene.hpp).
+#pragma once
+#include <cstdint>
+#include <vector>
+
+#include <glm/geometric.hpp>
+#include <glm/vec3.hpp>
+#include <glm/vec4.hpp>
+
+#include "voxray/appearance/sampling_rays.hpp"
+#include "voxray/io/mesh.hpp"
+
+namespace voxray::appearance {
+
+struct sampling_options {
+    std::uint32_t rays = 150;  // per voxel, as in the paper
+    bool stratified = true;    // spherical Fibonacci directions (false: independent uniform ones)
+    std::uint64_t seed = 1;
+};
+
+struct surface_sample {
+    glm::vec3 normal{0, 0, 1};  // unit, facing the ray
+    glm::vec4 colour{1.0f};     // linear RGBA
+};
+
+struct voxel_samples {
+    std::vector<surface_sample> seen;
+    std::uint32_t rays = 0, hits = 0;  // hits: rays stopped inside the voxel (samples or occlusion)
+};
+
+// Steps over a cut-out surface before a ray gives up (an alpha-tested stack of cards).
+inline constexpr int max_cut_out_layers = 64;
+
+template <class Scene>
+void sample_voxel(const Scene& scene, const io::triangle_mesh& mesh, glm::ivec3 voxel, const sampling_options& o,
+                  voxel_samples& out) {
+    out.seen.clear();
+    out.rays = o.rays, out.hits = 0;
+    const io::mesh_surface& s = mesh.surface;
+    constexpr float margin = 1e-4f;  // surfaces on the voxel's own faces count, from both sides
+    for (std::uint32_t i = 0; i < o.rays; ++i) {
+        sampling_ray ray = voxel_ray(voxel, i, o.rays, o.stratified, o.seed);
+        glm::vec3 dir(ray.direction), org = glm::vec3(ray.origin) - margin * dir;  // Embree wants tnear >= 0
+        float tnear = 0.0f, tfar = float(ray.length) + 2.0f * margin;
+        for (int layer = 0; layer < max_cut_out_layers; ++layer) {
+            auto hit = scene.first_hit(org, dir, tnear, tfar);
+            if (!hit) break;
+            glm::vec4 colour(1.0f);
+            bool double_sided = false;
+            if (s.coloured()) {
+                const io::mesh_material& m = s.materials[s.triangle_materials[hit->triangle]];
+                colour = s.colour_at(hit->triangle, hit->barycentric);
+                double_sided = m.double_sided;
+                if (m.cuts() && colour.a < m.cutoff()) {  // cut out here: go on behind it
+                    tnear = hit->t + std::max(margin, hit->t * 0x1.0p-18f);
+                    continue;
+                }
+            }
+            ++out.hits;
+            bool front = glm::dot(hit->normal, dir) < 0.0f;
+            if (front || double_sided) out.seen.push_back({front ? hit->normal : -hit->normal, colour});
+            break;
+        }
+    }
+}
+
+}  // namespace voxray::appearance
