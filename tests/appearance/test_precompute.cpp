@@ -59,7 +59,7 @@ TEST(appearance_precompute, a_plane_gives_its_colour_its_normal_and_a_third_of_t
     glm::vec4 colour(0.2f, 0.5f, 0.8f, 1.0f);
     appearance_table t = averages(plane(colour), plane_voxels(), 2, {.rays = 4000});
     ASSERT_EQ(t.size(), 16u);
-    rgba expected = io::to_srgb8(colour);
+    rgba expected = io::encode_srgb8(colour);
     // A plane through the middle of a unit cube: a ray through the cube hits it with
     // probability |d_z| / (|d_x| + |d_y| + |d_z|), a third over all directions.
     for (glm::ivec3 v : {glm::ivec3{1, 1, 0}, glm::ivec3{2, 1, 0}, glm::ivec3{1, 2, 0}, glm::ivec3{2, 2, 0}}) {

@@ -24,7 +24,8 @@ void write_text(const std::filesystem::path& p, const std::string& text) { std::
 template <class F>
 void write_tga(const std::filesystem::path& p, int w, int h, F texel) {
     std::vector<unsigned char> b(18, 0);
-    b[2] = 2, b[12] = std::uint8_t(w), b[13] = std::uint8_t(w >> 8), b[14] = std::uint8_t(h), b[15] = std::uint8_t(h >> 8);
+    b[2] = 2;  // uncompressed true colour
+    b[12] = std::uint8_t(w), b[13] = std::uint8_t(w >> 8), b[14] = std::uint8_t(h), b[15] = std::uint8_t(h >> 8);
     b[16] = 32, b[17] = 0x28;  // 8 alpha bits, top-left origin
     for (int y = 0; y < h; ++y)
         for (int x = 0; x < w; ++x) {
@@ -131,7 +132,8 @@ std::string triangle_gltf(const std::string& material, const std::string& node_e
   "nodes": [{"mesh": 0)" + node_extra + R"(}],
   "meshes": [{"primitives": [{"attributes": {"POSITION": 0}, "material": 0}]}],
   "materials": [)" + material + R"(],
-  "accessors": [{"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3", "min": [0, 0, 0], "max": [1, 1, 0]}],
+  "accessors": [{"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3",
+                 "min": [0, 0, 0], "max": [1, 1, 0]}],
   "bufferViews": [{"buffer": 0, "byteLength": )" + std::to_string(position_bytes) + R"(}],
   "buffers": [{"byteLength": 36, "uri": "data:application/octet-stream;base64,)" + base64(bytes) + R"("}]})";
 }
@@ -151,8 +153,10 @@ TEST(coloured_meshes, gltf_node_transforms_and_factors) {
     ASSERT_GT(m.voxel_count(), 0u);
     EXPECT_EQ(m.palette()[m.get(m.bounds().min)].colour, (rgba{255, 0, 0, 255}));
     // MASK with the factor's alpha below the cutoff: nothing is left.
-    write_text(dir.path() / "masked.gltf", triangle_gltf(R"({"pbrMetallicRoughness": {"baseColorFactor": [1, 1, 1, 0.2]},
-        "alphaMode": "MASK", "alphaCutoff": 0.5})", ""));
+    write_text(dir.path() / "masked.gltf",
+               triangle_gltf(R"({"pbrMetallicRoughness": {"baseColorFactor": [1, 1, 1, 0.2]},
+                                 "alphaMode": "MASK", "alphaCutoff": 0.5})",
+                             ""));
     EXPECT_EQ(io::voxelize(gltf::load_coloured_mesh(dir.path() / "masked.gltf"), {.resolution = 8}).voxel_count(), 0u);
 }
 
@@ -192,14 +196,15 @@ TEST(coloured_meshes, shared_gltf_scenes_take_their_materials_colours) {
     auto kitchen = *test::data_dir() / "mesh" / "kitchen" / "scene.gltf";
     io::triangle_mesh mesh = gltf::load_coloured_mesh(kitchen);
     std::vector<rgba> factors;
-    for (const io::mesh_material& mat : mesh.surface.materials) factors.push_back(io::to_srgb8(mat.base_colour));
+    for (const io::mesh_material& mat : mesh.surface.materials) factors.push_back(io::encode_srgb8(mat.base_colour));
     voxel_model m = io::voxelize(mesh, {.resolution = 96, .threads = 2});
     ASSERT_GT(m.voxel_count(), 10000u);
     std::uint64_t off = 0;
     m.for_each_voxel([&](glm::ivec3, std::uint8_t v) {
         rgba c = m.palette()[v].colour;
         bool near = false;
-        for (rgba f : factors) near = near || (std::abs(c.r - f.r) <= 2 && std::abs(c.g - f.g) <= 2 && std::abs(c.b - f.b) <= 2);
+        for (rgba f : factors)
+            near = near || (std::abs(c.r - f.r) <= 2 && std::abs(c.g - f.g) <= 2 && std::abs(c.b - f.b) <= 2);
         off += !near;
     });
     EXPECT_EQ(off, 0u);
@@ -207,7 +212,9 @@ TEST(coloured_meshes, shared_gltf_scenes_take_their_materials_colours) {
     voxel_model one = io::voxelize(mesh, {.resolution = 96, .threads = 1});
     EXPECT_EQ(one.voxel_count(), m.voxel_count());
     std::uint64_t differ = 0;
-    m.for_each_voxel([&](glm::ivec3 p, std::uint8_t v) { differ += one.palette()[one.get(p)].colour != m.palette()[v].colour; });
+    m.for_each_voxel([&](glm::ivec3 p, std::uint8_t v) {
+        differ += one.palette()[one.get(p)].colour != m.palette()[v].colour;
+    });
     EXPECT_EQ(differ, 0u);
 }
 
@@ -226,7 +233,8 @@ TEST(coloured_meshes, leaf_cards_are_cut_out_by_their_textures_alpha) {
 TEST(coloured_meshes, textured_gltf_gives_many_colours) {
     VOXRAY_REQUIRE_DATA();
     // The helmet's six textured materials: far more colours than materials.
-    voxel_model m = gltf::load_coloured_mesh_model(*test::data_dir() / "mesh" / "flight_helmet" / "FlightHelmet.gltf", 64);
+    auto helmet = *test::data_dir() / "mesh" / "flight_helmet" / "FlightHelmet.gltf";
+    voxel_model m = gltf::load_coloured_mesh_model(helmet, 64);
     std::set<std::uint8_t> used;
     m.for_each_voxel([&](glm::ivec3, std::uint8_t v) { used.insert(v); });
     EXPECT_GT(used.size(), 100u);

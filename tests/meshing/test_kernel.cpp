@@ -40,7 +40,8 @@ std::vector<chunk_voxels> chunks_of(const voxel_model& model, std::size_t most =
 
 // The kernel's meshes of `chunks` equal the CPU mesher's, word for word.
 template <class Mesher>
-void expect_cpu_meshes(const std::vector<chunk_voxels>& chunks, meshing::mesher_options options, const std::string& what) {
+void expect_cpu_meshes(const std::vector<chunk_voxels>& chunks, meshing::mesher_options options,
+                       const std::string& what) {
     Mesher kernel(options);
     std::vector<chunk_mesh> got = kernel.mesh(chunks);
     ASSERT_EQ(got.size(), chunks.size()) << what;

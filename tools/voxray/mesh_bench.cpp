@@ -108,8 +108,12 @@ nlohmann::json kernel_figures(const std::vector<meshing::chunk_voxels>& chunks,
             ms.push_back(seconds_since(start) * 1e3);
         }
         double median = percentile(ms, 0.5);
-        rows.push_back({{"backend", Mesher::backend_name()}, {"device", kernel.device_name()}, {"chunks", chunks.size()},
-                        {"runs", runs}, {"ms_median", median}, {"us_per_chunk", median * 1e3 / double(chunks.size())},
+        rows.push_back({{"backend", Mesher::backend_name()},
+                        {"device", kernel.device_name()},
+                        {"chunks", chunks.size()},
+                        {"runs", runs},
+                        {"ms_median", median},
+                        {"us_per_chunk", median * 1e3 / double(chunks.size())},
                         {"equal_to_cpu", equal}});
     });
     return rows;
@@ -168,8 +172,9 @@ nlohmann::json bench_scene(const std::string& spec, const mesh_bench_options& o)
 
     std::size_t kernel_chunks = std::min<std::size_t>(8, chunks.size());
     std::fprintf(stderr, "the mesher kernel on every backend, %zu chunk(s) ...\n", kernel_chunks);
-    nlohmann::json kernel = kernel_figures({chunks.begin(), chunks.begin() + std::ptrdiff_t(kernel_chunks)},
-                                           {before.begin(), before.begin() + std::ptrdiff_t(kernel_chunks)}, o.kernel_runs);
+    auto kernel_end = std::ptrdiff_t(kernel_chunks);
+    nlohmann::json kernel = kernel_figures({chunks.begin(), chunks.begin() + kernel_end},
+                                           {before.begin(), before.begin() + kernel_end}, o.kernel_runs);
 
     double median = percentile(pop, 0.5), n = double(chunks.size());
     double one = chunks_per_second(chunks, 1, median * 1e-6, o.seconds);

@@ -28,7 +28,9 @@ struct scene_options {
 
     // max_resolution: 4096 for a model voxelized whole; world-build voxelizes chunk by chunk.
     void add_to(CLI::App* app, bool many, int max_resolution = io::max_voxelize_resolution) {
-        auto* opt = app->add_option("scene", scenes, many ? "one or more scenes (a file or builtin:NAME)" : "a .vox/.obj/.ply/.gltf/.glb file or builtin:NAME")
+        auto* opt = app->add_option("scene", scenes,
+                                    many ? "one or more scenes (a file or builtin:NAME)"
+                                         : "a .vox/.obj/.ply/.gltf/.glb file or builtin:NAME")
                         ->required();
         if (!many) opt->expected(1);
         app->add_option("--resolution", resolution, "voxels along a mesh's longest side")
@@ -66,7 +68,9 @@ inline voxel_model load_scene(const std::string& spec, const scene_options& o) {
             model = io::load_vox(path, {.max_placed_voxels = o.max_voxels, .max_model_bytes = o.max_model_mib << 20});
         else if (gltf::is_coloured_mesh_path(path))  // coloured where the file has colour
             model = gltf::load_coloured_mesh_model(path, o.resolution, {.max_cell_tests = o.max_cell_tests});
-        else fail("scene ", spec, ": unknown file type '", ext, "' (expected .vox, .obj, .ply, .gltf, .glb or builtin:NAME)");
+        else
+            fail("scene ", spec, ": unknown file type '", ext,
+                 "' (expected .vox, .obj, .ply, .gltf, .glb or builtin:NAME)");
     }
     double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     std::fprintf(stderr, "loaded %s: %llu voxels in %.2f s\n", spec.c_str(),

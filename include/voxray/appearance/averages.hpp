@@ -44,7 +44,7 @@ inline std::array<std::uint32_t, VX_APP_AVERAGES_WORDS> averages_record(const vo
     glm::vec4 colour(0.0f);
     glm::vec3 normal(0.0f);
     for (const surface_sample& s : v.seen) colour += s.colour, normal += s.normal;
-    rgba c = io::to_srgb8(colour / float(v.seen.size()));
+    rgba c = io::encode_srgb8(colour / float(v.seen.size()));
     float length = glm::length(normal);
     glm::vec2 e = length > 1e-6f ? octahedral(normal / length) : glm::vec2(0.0f);
     return {VX_APP_AVG_WORD0(std::uint32_t(c.r), std::uint32_t(c.g), std::uint32_t(c.b), opacity),

@@ -29,7 +29,8 @@ inline int colour_channel(std::uint32_t rgb, int channel) { return int((rgb >> (
 
 inline median_cut_palette median_cut(std::vector<colour_count> colours, int most) {
     if (most < 1 || most > 256) fail("median cut: ", most, " palette entries asked for (1..256)");
-    std::sort(colours.begin(), colours.end(), [](const colour_count& a, const colour_count& b) { return a.rgb < b.rgb; });
+    std::sort(colours.begin(), colours.end(),
+              [](const colour_count& a, const colour_count& b) { return a.rgb < b.rgb; });
     struct box {
         std::size_t begin, end;  // range of `colours`
         int widest = 0, range = 0;

@@ -138,7 +138,8 @@ struct mesh_surface {
         for (int dy = 0; dy < 2; ++dy)
             for (int dx = 0; dx < 2; ++dx) {
                 int tx = wrapped(x0 + dx, tex.width, tex.wrap_u), ty = wrapped(y0 + dy, tex.height, tex.wrap_v);
-                const std::uint8_t* p = tex.rgba.data() + (std::size_t(ty) * std::size_t(tex.width) + std::size_t(tx)) * 4;
+                std::size_t texel = std::size_t(ty) * std::size_t(tex.width) + std::size_t(tx);
+                const std::uint8_t* p = tex.rgba.data() + texel * 4;
                 float w = (dx ? ax : 1.0f - ax) * (dy ? ay : 1.0f - ay);
                 out += w * glm::vec4(p[0], p[1], p[2], p[3]) / 255.0f;
             }

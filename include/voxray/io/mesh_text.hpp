@@ -72,6 +72,13 @@ inline std::string_view next_token(std::string_view& rest) {
     return tok;
 }
 
+// `s` without its leading and trailing whitespace (a name that may hold spaces).
+inline std::string_view trimmed(std::string_view s) {
+    while (!s.empty() && is_space(s.front())) s.remove_prefix(1);
+    while (!s.empty() && is_space(s.back())) s.remove_suffix(1);
+    return s;
+}
+
 // Whole-token parses: "1.5x" or "" fail rather than reading a prefix.
 inline bool parse_number(std::string_view tok, double& out) {
     if (!tok.empty() && tok.front() == '+') tok.remove_prefix(1);

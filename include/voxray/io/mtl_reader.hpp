@@ -33,14 +33,8 @@ inline void parse_mtl(std::string_view text, const std::string& name, const std:
         auto at = [&] { return name + ":" + std::to_string(lines.line_number()); };
         std::string_view rest = line;
         auto key = next_token(rest);
-        auto rest_trimmed = [&] {
-            std::string_view r = rest;
-            while (!r.empty() && is_space(r.front())) r.remove_prefix(1);
-            while (!r.empty() && is_space(r.back())) r.remove_suffix(1);
-            return r;
-        };
         if (key == "newmtl") {
-            std::string mname(rest_trimmed());
+            std::string mname(trimmed(rest));
             if (mname.empty()) fail(at(), ": newmtl without a name");
             auto [it, fresh] = index.emplace(mname, std::uint32_t(surface.materials.size()));
             if (fresh) surface.materials.emplace_back().name = mname;

@@ -93,11 +93,10 @@ inline triangle_mesh parse_obj(std::string_view text, const std::string& name, c
                 read_mtl(file, mesh.surface, material_index);
             }
         } else if (key == "usemtl" && options.materials) {
-            while (!rest.empty() && is_space(rest.front())) rest.remove_prefix(1);
-            while (!rest.empty() && is_space(rest.back())) rest.remove_suffix(1);
-            auto it = material_index.find(std::string(rest));
+            auto material_name = trimmed(rest);
+            auto it = material_index.find(std::string(material_name));
             if (it == material_index.end())
-                fail(at(), ": usemtl ", quote(rest), ": no such material in the mtllib files read so far");
+                fail(at(), ": usemtl ", quote(material_name), ": no such material in the mtllib files read so far");
             material = it->second;
             any_material = true;
         } else if (key == "f") {
@@ -146,9 +145,7 @@ inline triangle_mesh parse_obj(std::string_view text, const std::string& name, c
                 }
             }
         } else if (key == "g" || key == "o") {
-            while (!rest.empty() && is_space(rest.front())) rest.remove_prefix(1);
-            while (!rest.empty() && is_space(rest.back())) rest.remove_suffix(1);
-            use_group(std::string(rest));
+            use_group(std::string(trimmed(rest)));
         }
         // Anything else (vt, vn, s, usemtl, mtllib, l, p, comments) carries no shape.
     }
@@ -170,7 +167,8 @@ inline triangle_mesh parse_obj(std::string_view text, const std::string& name, c
         bool any_uv = false;
         for (std::int64_t i : corner_uv) any_uv = any_uv || i >= 0;
         if (any_uv)
-            for (std::int64_t i : corner_uv) mesh.surface.corner_uvs.push_back(i >= 0 ? uvs[std::size_t(i)] : glm::vec2(0));
+            for (std::int64_t i : corner_uv)
+                mesh.surface.corner_uvs.push_back(i >= 0 ? uvs[std::size_t(i)] : glm::vec2(0));
     } else {
         mesh.surface = {};  // no usemtl: no colour (the groups' palette)
     }

@@ -47,7 +47,9 @@ inline glm::dvec3 nearest_barycentric(glm::dvec3 a, glm::dvec3 b, glm::dvec3 c, 
     return {1 - v - w, v, w};
 }
 
-inline rgba to_srgb8(glm::vec4 linear) {
+// Linear RGB to 8-bit sRGB by the exact sRGB curve (data; rays/shading.hpp's to_srgb8 is a
+// display gamma for pictures).
+inline rgba encode_srgb8(glm::vec4 linear) {
     auto byte = [](float c) { return std::uint8_t(linear_to_srgb(c) * 255.0f + 0.5f); };
     return {byte(linear.r), byte(linear.g), byte(linear.b), 255};
 }
@@ -57,7 +59,7 @@ inline std::optional<rgba> voxel_colour(const mesh_surface& s, std::size_t t, co
     const mesh_material& m = s.materials[s.triangle_materials[t]];
     if (!s.varies(t)) {
         if (m.cuts() && m.base_colour.a < m.cutoff()) return std::nullopt;
-        return to_srgb8(m.base_colour);
+        return encode_srgb8(m.base_colour);
     }
     glm::dvec3 centre = glm::dvec3(cell) + 0.5;
     glm::vec4 sum(0.0f);
@@ -71,7 +73,7 @@ inline std::optional<rgba> voxel_colour(const mesh_surface& s, std::size_t t, co
         ++kept;
     }
     if (!kept) return std::nullopt;
-    return to_srgb8(sum / float(kept));
+    return encode_srgb8(sum / float(kept));
 }
 
 }  // namespace voxray::io

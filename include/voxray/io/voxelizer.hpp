@@ -403,7 +403,8 @@ inline voxel_model voxelize(const triangle_mesh& mesh, const voxelize_options& o
                 }
                 is_touched[lc] = 0;
                 glm::ivec3 l{lc & 7, (lc >> 3) & 7, lc >> 6};
-                results[id].push_back({(origin >> voxel_model::chunk_bits) + l, std::move(c), std::move(chunk_colours)});
+                results[id].push_back(
+                    {(origin >> voxel_model::chunk_bits) + l, std::move(c), std::move(chunk_colours)});
             }
             touched.clear();
         }

@@ -163,8 +163,8 @@ VX_FN void vx_mk_plane(VX_BLOB blob, VX_FRAME frame, uint item, bool write) {
         bool edge_row = r == 0 || r == 63;
         for (int b = 0; b < 64; ++b)
             if ((edge_row || b == 0 || b == 63) && vx_mk_bit(low[r], high[r], b))
-                vx_mk_quad(frame, block, counters, face, layer, r, b, 1, 1, vx_mk_key(blob, base, face, layer, r, b, ao),
-                           flags, write);
+                vx_mk_quad(frame, block, counters, face, layer, r, b, 1, 1,
+                           vx_mk_key(blob, base, face, layer, r, b, ao), flags, write);
         if (edge_row) continue;
         /* Runs from the lowest bit: as long as the faces share the first one's key, then
          * grown down the rows while the next row holds the same run with the same key. */

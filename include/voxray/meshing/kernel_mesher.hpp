@@ -57,7 +57,8 @@ public:
         frame_.check();
         device_.upload(pack_chunks_words(chunks));
         device_.frame_reserve(frame_.words());
-        std::uint32_t flags = (options_.ambient_occlusion ? VX_MK_FLAG_AO : 0u) | (options_.pop_order ? VX_MK_FLAG_POP : 0u);
+        std::uint32_t flags =
+            (options_.ambient_occlusion ? VX_MK_FLAG_AO : 0u) | (options_.pop_order ? VX_MK_FLAG_POP : 0u);
         device_.frame_write(0, frame_.header(flags));
         std::uint64_t planes = std::uint64_t(chunks.size()) * VX_MK_PLANES;
         device_.run_pass(VX_MK_PASS_COUNT, planes);

@@ -52,14 +52,16 @@ public:
         constexpr std::uint64_t batch = 16;  // a plane is thousands of steps: small batches share well
         pool_->parallel_for(std::size_t((items + batch - 1) / batch), [&](std::size_t b) {
             std::uint64_t end = std::min<std::uint64_t>(items, (b + 1) * batch);
-            for (std::uint64_t i = b * batch; i < end; ++i) kernels::scalar::vx_mesher_pass(blob, frame, pass, std::uint32_t(i));
+            for (std::uint64_t i = b * batch; i < end; ++i)
+                kernels::scalar::vx_mesher_pass(blob, frame, pass, std::uint32_t(i));
         });
     }
     const std::vector<std::uint32_t>& frame() const { return frame_; }
 
 private:
     void check_range(std::size_t at, std::size_t n) const {
-        if (at + n > frame_.size()) fail("cpu mesher kernel: frame words [", at, ", ", at + n, ") outside its ", frame_.size());
+        if (at + n > frame_.size())
+            fail("cpu mesher kernel: frame words [", at, ", ", at + n, ") outside its ", frame_.size());
     }
 
     std::unique_ptr<thread_pool> pool_;

@@ -46,7 +46,8 @@ inline io::triangle_mesh load_coloured_mesh(const std::filesystem::path& path) {
 inline voxel_model load_coloured_mesh_model(const std::filesystem::path& path, int resolution,
                                             const io::mesh_load_options& opt = {}) {
     if (resolution < 1 || resolution > io::max_voxelize_resolution)
-        fail("voxelization resolution ", resolution, " is outside the supported range 1..", io::max_voxelize_resolution);
+        fail("voxelization resolution ", resolution, " is outside the supported range 1..",
+             io::max_voxelize_resolution);
     io::triangle_mesh mesh = load_coloured_mesh(path);
     try {
         voxel_model model = io::voxelize(mesh, {resolution, opt.threads, opt.max_cell_tests});

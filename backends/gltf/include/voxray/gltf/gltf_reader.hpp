@@ -60,7 +60,9 @@ inline std::vector<float> read_floats(const tinygltf::Model& m, int index, int& 
             switch (a.componentType) {
                 case TINYGLTF_COMPONENT_TYPE_FLOAT: std::memcpy(&value, p, 4); break;
                 case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: value = float(*p) / (a.normalized ? 255.0f : 1.0f); break;
-                case TINYGLTF_COMPONENT_TYPE_BYTE: value = std::max(float(std::int8_t(*p)) / (a.normalized ? 127.0f : 1.0f), -1.0f); break;
+                case TINYGLTF_COMPONENT_TYPE_BYTE:
+                    value = std::max(float(std::int8_t(*p)) / (a.normalized ? 127.0f : 1.0f), -1.0f);
+                    break;
                 case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: {
                     std::uint16_t u;
                     std::memcpy(&u, p, 2);
@@ -116,7 +118,8 @@ inline glm::dmat4 node_transform(const tinygltf::Node& node) {
         return t;
     }
     glm::dmat4 t(1.0);
-    if (node.translation.size() == 3) t = glm::translate(t, {node.translation[0], node.translation[1], node.translation[2]});
+    if (node.translation.size() == 3)
+        t = glm::translate(t, {node.translation[0], node.translation[1], node.translation[2]});
     if (node.rotation.size() == 4)
         t *= glm::mat4_cast(glm::dquat(node.rotation[3], node.rotation[0], node.rotation[1], node.rotation[2]));
     if (node.scale.size() == 3) t = glm::scale(t, {node.scale[0], node.scale[1], node.scale[2]});
@@ -148,7 +151,8 @@ inline io::mesh_texture texture_of(const tinygltf::Model& m, int index, const st
     out.rgba.resize(std::size_t(img.width) * std::size_t(img.height) * 4);
     for (std::size_t i = 0; i < std::size_t(img.width) * std::size_t(img.height); ++i) {
         auto at = [&](int ch) {  // the high byte of 16-bit channels (little endian)
-            return img.image[(i * std::size_t(channels) + std::size_t(ch)) * std::size_t(bytes) + std::size_t(bytes - 1)];
+            std::size_t byte = (i * std::size_t(channels) + std::size_t(ch)) * std::size_t(bytes);
+            return img.image[byte + std::size_t(bytes - 1)];
         };
         std::uint8_t grey = at(0);
         out.rgba[4 * i + 0] = channels >= 3 ? at(0) : grey;
@@ -247,7 +251,8 @@ inline io::triangle_mesh read_gltf(const std::filesystem::path& path) {
             for (std::uint32_t k : {a, b, c}) {
                 s.corner_uvs.push_back(uv.empty() ? glm::vec2(0) : glm::vec2(uv[2 * k], uv[2 * k + 1]));
                 glm::vec4 col(1.0f);
-                for (int ch = 0; ch < colour_n && !colour.empty(); ++ch) col[ch] = colour[std::size_t(colour_n) * k + std::size_t(ch)];
+                for (int ch = 0; ch < colour_n && !colour.empty(); ++ch)
+                    col[ch] = colour[std::size_t(colour_n) * k + std::size_t(ch)];
                 s.corner_colours.push_back(col);
             }
         };

@@ -58,7 +58,9 @@ public:
         commands_->submit_and_wait();
     }
     void frame_reserve(std::size_t words) { passes_.reserve(*ctx_, words); }
-    void frame_write(std::size_t at, std::span<const std::uint32_t> words) { passes_.write(*ctx_, *commands_, at, words); }
+    void frame_write(std::size_t at, std::span<const std::uint32_t> words) {
+        passes_.write(*ctx_, *commands_, at, words);
+    }
     void frame_read(std::size_t at, std::span<std::uint32_t> words) { passes_.read(*ctx_, *commands_, at, words); }
     void run_pass(std::uint32_t pass, std::uint64_t items) {
         if (items > 0) passes_.run(*ctx_, *commands_, voxray_spirv_mesher_passes, blob_.address(), pass, items);
