@@ -6,6 +6,8 @@
 // (io/mesh_surface.hpp). A primitive without a material is white, as the spec says.
 // Errors name the file and what is wrong (the accessor, the image, the limit).
 #pragma once
+#include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
