@@ -52,25 +52,26 @@ voxel_model plane_voxels() {
 appearance_table averages(const io::triangle_mesh& mesh, const voxel_model& voxels, unsigned threads = 2,
                           appearance::sampling_options sampling = {}) {
     embree::triangle_scene scene(mesh, identity_grid());
-    return appearance::precompute_averages(scene, mesh, voxels, {.sampling = sampling, .threads = threads});
+    return appearance::precompute(scene, mesh, voxels, {.sampling = sampling, .threads = threads});
 }
 
 TEST(appearance_precompute, a_plane_gives_its_colour_its_normal_and_a_third_of_the_rays) {
     glm::vec4 colour(0.2f, 0.5f, 0.8f, 1.0f);
     appearance_table t = averages(plane(colour), plane_voxels(), 2, {.rays = 4000});
     ASSERT_EQ(t.size(), 16u);
-    rgba expected = io::encode_srgb8(colour);
+    std::uint32_t expected[3] = {appearance::srgb_code(colour.r), appearance::srgb_code(colour.g),
+                                 appearance::srgb_code(colour.b)};
     // A plane through the middle of a unit cube: a ray through the cube hits it with
     // probability |d_z| / (|d_x| + |d_y| + |d_z|), a third over all directions.
     for (glm::ivec3 v : {glm::ivec3{1, 1, 0}, glm::ivec3{2, 1, 0}, glm::ivec3{1, 2, 0}, glm::ivec3{2, 2, 0}}) {
         auto r = t.record(*t.row_of(v));
-        EXPECT_EQ(VX_APP_AVG_R(r[0]), expected.r);
-        EXPECT_EQ(VX_APP_AVG_G(r[0]), expected.g);
-        EXPECT_EQ(VX_APP_AVG_B(r[0]), expected.b);
+        EXPECT_EQ(VX_APP_AVG_R(r[0]), expected[0]);
+        EXPECT_EQ(VX_APP_AVG_G(r[0]), expected[1]);
+        EXPECT_EQ(VX_APP_AVG_B(r[0]), expected[2]);
         // 4,000 rays: the share's standard deviation is about 0.007.
         EXPECT_NEAR(VX_APP_AVG_OPACITY(r[0]) / 255.0, 1.0 / 3.0, 0.02) << v.x << ", " << v.y;
-        glm::vec3 n = appearance::from_octahedral({appearance::from_snorm16(VX_APP_AVG_NORMAL_U(r[1])),
-                                                   appearance::from_snorm16(VX_APP_AVG_NORMAL_V(r[1]))});
+        glm::vec3 n = appearance::from_octahedral({appearance::from_snorm(VX_APP_AVG_NORMAL_U(r[1]), 16),
+                                                   appearance::from_snorm(VX_APP_AVG_NORMAL_V(r[1]), 16)});
         EXPECT_NEAR(n.z, 1.0f, 1e-4f);  // one-sided: only the rays from above see it
     }
 }
@@ -100,13 +101,19 @@ TEST(appearance_precompute, the_table_does_not_depend_on_the_thread_count) {
     io::triangle_mesh m = plane({0.9f, 0.1f, 0.3f, 1.0f});
     add_quad(m, {0, 1.3, 0}, {4, 1.3, 0}, {4, 1.3, 1}, {0, 1.3, 1});  // a wall across the plane
     m.surface.triangle_materials.resize(4, 0);
-    for (bool stratified : {true, false}) {
-        appearance_table one = averages(m, plane_voxels(), 1, {.stratified = stratified});
-        appearance_table two = averages(m, plane_voxels(), 2, {.stratified = stratified});
-        EXPECT_EQ(one.words, two.words);
-        appearance_table other_seed = averages(m, plane_voxels(), 2, {.stratified = stratified, .seed = 9});
-        EXPECT_NE(one.words, other_seed.words);  // the seed is used
-    }
+    embree::triangle_scene scene(m, identity_grid());
+    for (auto kind : {appearance::record_kind::averages, appearance::record_kind::compact})
+        for (bool stratified : {true, false}) {
+            auto table = [&](unsigned threads, std::uint64_t seed) {
+                return appearance::precompute(scene, m, plane_voxels(),
+                                              {.kind = kind, .sampling = {.stratified = stratified, .seed = seed},
+                                               .threads = threads});
+            };
+            appearance_table one = table(1, 1), two = table(2, 1);
+            EXPECT_EQ(one.words, two.words);
+            EXPECT_EQ(one.faces, two.faces);
+            EXPECT_NE(one.words, table(2, 9).words);  // the seed is used
+        }
 }
 
 TEST(appearance_precompute, a_shared_coloured_scene) {
@@ -116,7 +123,7 @@ TEST(appearance_precompute, a_shared_coloured_scene) {
     voxel_model model = io::voxelize(mesh, {.resolution = resolution, .threads = 2});
     embree::triangle_scene scene(mesh, io::make_grid_map(mesh.bounds(), resolution));
     appearance::precompute_stats stats;
-    appearance_table t = appearance::precompute_averages(scene, mesh, model, {.sampling = {}, .threads = 2}, &stats);
+    appearance_table t = appearance::precompute(scene, mesh, model, {.sampling = {}, .threads = 2}, &stats);
     ASSERT_EQ(t.size(), model.voxel_count());
     double opacity = 0;
     for (std::size_t row = 0; row < t.size(); ++row) opacity += VX_APP_AVG_OPACITY(t.record(row)[0]) / 255.0;
@@ -127,6 +134,13 @@ TEST(appearance_precompute, a_shared_coloured_scene) {
     EXPECT_LT(opacity, 0.9);
     std::printf("kitchen at %d: %llu voxels, %.0f rays/s, %.1f us a voxel, mean opacity %.3f\n", resolution,
                 (unsigned long long)stats.voxels, stats.rays_per_second(), stats.us_per_voxel(), opacity);
+    appearance_table compact = appearance::precompute(
+        scene, mesh, model, {.kind = appearance::record_kind::compact, .sampling = {}, .threads = 2}, &stats);
+    ASSERT_EQ(compact.size(), model.voxel_count());
+    EXPECT_LE(compact.bytes_per_voxel(), 64.0);
+    EXPECT_GT(compact.faces.size(), 0u);
+    std::printf("kitchen at %d, compact: %.1f bytes a voxel, %.0f rays/s, %.1f us a voxel\n", resolution,
+                compact.bytes_per_voxel(), stats.rays_per_second(), stats.us_per_voxel());
 }
 
 }  // namespace

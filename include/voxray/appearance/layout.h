@@ -1,6 +1,6 @@
 /* Appearance records beside a structure's voxels (issue 25): the table of one record per
  * non-empty voxel, in the order of its voxel ordinal (appearance/table.hpp). Shared by the
- * precompute on the host and the kernels that read records.
+ * precompute on the host and the kernels that read records (appearance/record.h).
  *
  * The *averages* record (the paper's baseline: one colour, one normal, one opacity a voxel),
  * two 32-bit words:
@@ -19,6 +19,51 @@
  *            0..255 for 0..1 (the mean over directions)
  *  u, v      the mean normal of the surfaces seen, octahedral (u, v in -1..1); (0, 0) with
  *            opacity 0 when nothing was seen
+ *
+ * The *compact* record (ours): a 3-word head per voxel, and its faces, 2 words each, in a
+ * pool shared by the table (so a voxel pays only for the faces it has):
+ *
+ *  head 0   31                                                  0
+ *          +-----------------------------------------------------+
+ *          |        first face: its index in the face pool       |
+ *          +-----------------------------------------------------+
+ *  head 1   31   28 27   24 23   20 19   16 15   12 11    8 7   4 3    0
+ *          +-------+-------+-------+-------+-------+-------+------+------+
+ *          |  a5   |  a4   |  a3   |  a2   |  a1   |  a0   |  0   |faces |
+ *          +-------+-------+-------+-------+-------+-------+------+------+
+ *  head 2   31   28 27   24 23   20 19   16 15   12 11    8 7   4 3    0
+ *          +-------+-------+-------+-------+-------+-------+------+------+
+ *          |   0   |  a12  |  a11  |  a10  |  a9   |  a8   |  a7  |  a6  |
+ *          +-------+-------+-------+-------+-------+-------+------+------+
+ *
+ *  faces     how many faces follow (0..8): one per octant of the voxel's normal frame that
+ *            holds samples (appearance/faces.hpp)
+ *  a0..a12   the voxel's opacity along the 13 opacity directions (below), 0..15 for 0..1;
+ *            a direction and its opposite see the same silhouette, so 13 cover all 26
+ *
+ *  face 0   31        24 23        16 15         8 7          0
+ *          +------------+------------+------------+------------+
+ *          |   weight   |     b      |     g      |     r      |
+ *          +------------+------------+------------+------------+
+ *  face 1   31        24 23                  12 11                  0
+ *          +------------+----------------------+----------------------+
+ *          |   spread   |  normal v (snorm12)  |  normal u (snorm12)  |
+ *          +------------+----------------------+----------------------+
+ *
+ *  r, g, b   the face's colour (sRGB-encoded mean of its samples)
+ *  weight    the face's share of the voxel's surface (of its samples), 1..255
+ *  u, v      the face's mean normal, octahedral
+ *  spread    how far its normals stray from the mean: the tangent of the quadrature ring's
+ *            angle (record.h), 0..255 for 0..VX_APP_SPREAD_MAX
+ *
+ * The 13 opacity directions: the 3 axes, the 6 face diagonals and the 4 body diagonals of
+ * the cube, k = 0..12. Component c of direction k (unnormalised, -1, 0 or 1) is
+ * VX_APP_DIR(k, c), a float; its length is 1, sqrt 2 or sqrt 3 as it has 1, 2 or 3 non-zero parts.
+ *
+ *   k    0  1  2 |  3  4  5  6  7  8 |  9 10 11 12
+ *   x    1  0  0 |  1  1  1  1  0  0 |  1  1  1 -1
+ *   y    0  1  0 |  1 -1  0  0  1  1 |  1  1 -1  1
+ *   z    0  0  1 |  0  0  1 -1  1 -1 |  1 -1  1  1
  */
 #ifndef VOXRAY_LAYOUT_APPEARANCE_LAYOUT_H
 #define VOXRAY_LAYOUT_APPEARANCE_LAYOUT_H
@@ -33,5 +78,51 @@
 #define VX_APP_AVG_NORMAL_U(w1) ((w1) & 0xFFFFu)
 #define VX_APP_AVG_NORMAL_V(w1) (((w1) >> 16) & 0xFFFFu)
 #define VX_APP_AVG_WORD1(u16, v16) ((u16) | ((v16) << 16))
+
+#define VX_APP_COMPACT_WORDS 3
+#define VX_APP_FACE_WORDS 2
+#define VX_APP_MAX_FACES 8
+#define VX_APP_DIRECTIONS 13
+#define VX_APP_OPACITY_LEVELS 15u
+/* The largest spread stored: a ring at atan(2), about 63 degrees from the mean normal. */
+#define VX_APP_SPREAD_MAX 2.0f
+
+#define VX_APP_FIRST_FACE(h0) (h0)
+#define VX_APP_FACES(h1) ((h1) & 0xFu)
+/* The 4-bit opacity of direction k (0..12) from head words 1 and 2. */
+#define VX_APP_OPACITY_Q(h1, h2, k) \
+    ((k) < 6u ? (((h1) >> (8u + 4u * (k))) & 0xFu) : (((h2) >> (4u * ((k) - 6u))) & 0xFu))
+
+#define VX_APP_FACE_R(f0) ((f0) & 0xFFu)
+#define VX_APP_FACE_G(f0) (((f0) >> 8) & 0xFFu)
+#define VX_APP_FACE_B(f0) (((f0) >> 16) & 0xFFu)
+#define VX_APP_FACE_WEIGHT(f0) (((f0) >> 24) & 0xFFu)
+#define VX_APP_FACE_WORD0(r, g, b, weight) ((r) | ((g) << 8) | ((b) << 16) | ((weight) << 24))
+#define VX_APP_FACE_NORMAL_U(f1) ((f1) & 0xFFFu)
+#define VX_APP_FACE_NORMAL_V(f1) (((f1) >> 12) & 0xFFFu)
+#define VX_APP_FACE_SPREAD(f1) (((f1) >> 24) & 0xFFu)
+#define VX_APP_FACE_WORD1(u12, v12, spread) ((u12) | ((v12) << 12) | ((spread) << 24))
+
+/* An 8-bit sRGB code's linear value, x = code / 255: a cubic fit of the sRGB curve, within
+ * 0.6 %, the same arithmetic on every backend (appearance/record.h, colour_codes.hpp). */
+#define VX_APP_SRGB_CUBIC(x) ((x) * ((x) * ((x) * 0.305306011f + 0.682171111f) + 0.012522878f))
+
+/* Direction k's components: bit k of the "non-zero" mask, then of the "negative" mask. */
+#define VX_APP_DIR_NONZERO_X 0x1E79u
+#define VX_APP_DIR_NONZERO_Y 0x1F9Au
+#define VX_APP_DIR_NONZERO_Z 0x1FE4u
+#define VX_APP_DIR_NEGATIVE_X 0x1000u
+#define VX_APP_DIR_NEGATIVE_Y 0x0810u
+#define VX_APP_DIR_NEGATIVE_Z 0x0540u
+#define VX_APP_DIR_BIT(mask, k) (((mask) >> (k)) & 1u)
+#define VX_APP_DIR_COMPONENT(nonzero, negative, k) \
+    (VX_APP_DIR_BIT(nonzero, k) != 0u ? (VX_APP_DIR_BIT(negative, k) != 0u ? -1.0f : 1.0f) : 0.0f)
+/* Component c (0, 1, 2 for x, y, z) of direction k, as a float; k and c unsigned. */
+#define VX_APP_DIR(k, c)                                                                     \
+    ((c) == 0u   ? VX_APP_DIR_COMPONENT(VX_APP_DIR_NONZERO_X, VX_APP_DIR_NEGATIVE_X, k)       \
+     : (c) == 1u ? VX_APP_DIR_COMPONENT(VX_APP_DIR_NONZERO_Y, VX_APP_DIR_NEGATIVE_Y, k)       \
+                 : VX_APP_DIR_COMPONENT(VX_APP_DIR_NONZERO_Z, VX_APP_DIR_NEGATIVE_Z, k))
+/* 1 / length of direction k. */
+#define VX_APP_DIR_INV_LENGTH(k) ((k) < 3u ? 1.0f : (k) < 9u ? 0.70710678f : 0.57735027f)
 
 #endif

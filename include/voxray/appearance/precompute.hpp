@@ -1,9 +1,10 @@
 // The appearance precompute (issue 25, item 3): every non-empty voxel of a model voxelized
-// from `mesh` sampled against the original triangles (appearance/voxel_sampler.hpp) on all
-// threads, and a record made of what it saw. Voxels are handed out in table order and each
-// one's rays depend only on (seed, voxel, ray), so the table is the same for any thread count.
-// `Scene` traces the mesh in voxel space (embree/triangle_scene.hpp built on the grid map the
-// voxelizer used); the model must be io::voxelize(mesh) at that grid.
+// from `mesh` sampled against the original triangles (appearance/voxel_sampler.hpp,
+// opacity_rays.hpp) on all threads, and a record made of what it saw. Voxels are handed out
+// in table order and each one's rays depend only on (seed, voxel, ray), so the table is the
+// same for any thread count. `Scene` traces the mesh in voxel space
+// (embree/triangle_scene.hpp built on the grid map the voxelizer used); the model must be
+// io::voxelize(mesh) at that grid.
 #pragma once
 #include <atomic>
 #include <chrono>
@@ -11,6 +12,7 @@
 #include <vector>
 
 #include "voxray/appearance/averages.hpp"
+#include "voxray/appearance/compact.hpp"
 #include "voxray/appearance/table.hpp"
 #include "voxray/appearance/voxel_sampler.hpp"
 #include "voxray/core/error.hpp"
@@ -20,8 +22,10 @@
 namespace voxray::appearance {
 
 struct precompute_options {
+    record_kind kind = record_kind::averages;
     sampling_options sampling;
-    unsigned threads = 0;  // 0: every hardware thread
+    unsigned opacity_strata = 2;  // compact: n x n parallel rays a face, per opacity direction
+    unsigned threads = 0;         // 0: every hardware thread
 };
 
 struct precompute_stats {
@@ -31,17 +35,23 @@ struct precompute_stats {
     double us_per_voxel() const { return voxels ? seconds * 1e6 / double(voxels) : 0; }
 };
 
-// The averages table of `model`'s voxels.
+// Opacity rays a voxel: each of the 13 directions enters through 1, 2 or 3 faces.
+inline std::uint64_t opacity_rays_per_voxel(unsigned strata) { return 27ull * strata * strata; }
+
 template <class Scene>
-appearance_table precompute_averages(const Scene& scene, const io::triangle_mesh& mesh, const voxel_model& model,
-                                     const precompute_options& o = {}, precompute_stats* stats = nullptr) {
+appearance_table precompute(const Scene& scene, const io::triangle_mesh& mesh, const voxel_model& model,
+                            const precompute_options& o = {}, precompute_stats* stats = nullptr) {
     if (o.sampling.rays == 0) fail("appearance precompute: 0 sampling rays a voxel");
+    const bool compact = o.kind == record_kind::compact;
+    if (compact && o.opacity_strata == 0) fail("appearance precompute: 0 opacity strata");
     auto start = std::chrono::steady_clock::now();
     appearance_table t;
-    t.record_words = VX_APP_AVERAGES_WORDS;
+    t.kind = o.kind;
+    t.record_words = compact ? VX_APP_COMPACT_WORDS : VX_APP_AVERAGES_WORDS;
     model.for_each_voxel([&](glm::ivec3 p, std::uint8_t) { t.voxels.push_back(p); });
-    std::sort(t.voxels.begin(), t.voxels.end(), zyx_less);
-    t.words.assign(t.voxels.size() * VX_APP_AVERAGES_WORDS, 0);
+    std::sort(t.voxels.begin(), t.voxels.end(), ordinal_less);
+    t.words.assign(t.voxels.size() * std::size_t(t.record_words), 0);
+    std::vector<std::vector<std::uint32_t>> row_faces(compact ? t.voxels.size() : 0);
     unsigned threads = resolve_build_threads(o.threads, t.voxels.size());
     std::atomic<std::size_t> next{0};
     std::atomic<std::uint64_t> hits{0};
@@ -53,14 +63,28 @@ appearance_table precompute_averages(const Scene& scene, const io::triangle_mesh
             for (std::size_t row = first; row < std::min(first + batch, t.voxels.size()); ++row) {
                 sample_voxel(scene, mesh, t.voxels[row], o.sampling, samples);
                 mine += samples.hits;
-                auto record = averages_record(samples);
-                std::copy(record.begin(), record.end(), t.words.begin() + std::ptrdiff_t(row * VX_APP_AVERAGES_WORDS));
+                auto* words = t.words.data() + row * std::size_t(t.record_words);
+                if (!compact) {
+                    auto record = averages_record(samples);
+                    std::copy(record.begin(), record.end(), words);
+                    continue;
+                }
+                compact_record r = make_compact_record(
+                    voxel_faces(samples), directional_opacity(scene, mesh, t.voxels[row], o.opacity_strata,
+                                                              o.sampling.seed));
+                std::copy(r.head.begin(), r.head.end(), words);
+                row_faces[row] = std::move(r.faces);
             }
         hits += mine;
     });
+    for (std::size_t row = 0; row < row_faces.size(); ++row) {  // the face pool, in row order
+        t.words[row * VX_APP_COMPACT_WORDS] = std::uint32_t(t.faces.size() / VX_APP_FACE_WORDS);
+        t.faces.insert(t.faces.end(), row_faces[row].begin(), row_faces[row].end());
+    }
+    if (t.faces.size() / VX_APP_FACE_WORDS > 0xFFFFFFFFull) fail("appearance precompute: over 2^32 faces");
     if (stats) {
         stats->voxels = t.voxels.size();
-        stats->rays = stats->voxels * o.sampling.rays;
+        stats->rays = stats->voxels * (o.sampling.rays + (compact ? opacity_rays_per_voxel(o.opacity_strata) : 0));
         stats->hits = hits;
         stats->seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     }

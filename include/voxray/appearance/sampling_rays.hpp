@@ -10,6 +10,7 @@
 // Random numbers come from a counter-based generator keyed by (seed, voxel, ray), so a
 // voxel's rays do not depend on which thread samples it, or when.
 #pragma once
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <numbers>
@@ -40,6 +41,15 @@ struct sampling_ray {
     double length = 0;          // to where it leaves the voxel
 };
 
+// How far a ray from point p of the unit cube along unit d goes before it leaves the cube:
+// to the nearest exit plane along each moving axis.
+inline double exit_length(glm::dvec3 p, glm::dvec3 d) {
+    double length = 1e30;
+    for (int a = 0; a < 3; ++a)
+        if (d[a] != 0.0) length = std::min(length, ((d[a] > 0 ? 1.0 : 0.0) - p[a]) / d[a]);
+    return std::max(length, 0.0);
+}
+
 // Ray `i` of `count` through voxel `voxel` (the unit cube at its integer corner).
 inline sampling_ray voxel_ray(glm::ivec3 voxel, std::uint32_t i, std::uint32_t count, bool stratified,
                               std::uint64_t seed) {
@@ -60,11 +70,7 @@ inline sampling_ray voxel_ray(glm::ivec3 voxel, std::uint32_t i, std::uint32_t c
     int axis = pick < weights[0] ? 0 : (pick < weights[0] + weights[1] ? 1 : 2);
     glm::dvec3 p(uniform01(seed, voxel, i, 3), uniform01(seed, voxel, i, 4), uniform01(seed, voxel, i, 5));
     p[axis] = d[axis] > 0 ? 0.0 : 1.0;
-    // Where it leaves the unit cube: the nearest exit plane along each moving axis.
-    double length = 1e30;
-    for (int a = 0; a < 3; ++a)
-        if (d[a] != 0.0) length = std::min(length, ((d[a] > 0 ? 1.0 : 0.0) - p[a]) / d[a]);
-    return {glm::dvec3(voxel) + p, d, std::max(length, 0.0)};
+    return {glm::dvec3(voxel) + p, d, exit_length(p, d)};
 }
 
 }  // namespace voxray::appearance

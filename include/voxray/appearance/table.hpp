@@ -1,9 +1,11 @@
 // An appearance table: one record per non-empty voxel of a model, in the order of the
-// voxels' ordinal, here (z, y, x) order of their coordinates; a structure that numbers its
-// voxels otherwise (a DAG's depth-first index) maps its ordinal to a row. Records are
-// `record_words` 32-bit words each (appearance/layout.h).
+// ordinal index (appearance/ordinal.h, built by ordinal_index.hpp), which maps any
+// structure's hit voxel to its row. Records are
+// `record_words` 32-bit words each (appearance/layout.h); compact records also own faces
+// in a pool.
 #pragma once
 #include <algorithm>
+#include <array>
 #include <cstdint>
 #include <optional>
 #include <span>
@@ -13,27 +15,39 @@
 
 namespace voxray::appearance {
 
-inline bool zyx_less(glm::ivec3 a, glm::ivec3 b) {
-    if (a.z != b.z) return a.z < b.z;
-    if (a.y != b.y) return a.y < b.y;
-    return a.x < b.x;
+// The table's row order, the ordinal index's (appearance/ordinal.h): bricks of 4^3 voxels in
+// (z, y, x) order, then the voxels of a brick in (z, y, x) order.
+inline bool ordinal_less(glm::ivec3 a, glm::ivec3 b) {
+    auto key = [](glm::ivec3 p) {
+        return std::array<int, 6>{p.z >> 2, p.y >> 2, p.x >> 2, p.z & 3, p.y & 3, p.x & 3};
+    };
+    return key(a) < key(b);
 }
 
+// The records a table can hold (layout.h).
+enum class record_kind { averages, compact };
+
+inline const char* record_name(record_kind k) { return k == record_kind::averages ? "averages" : "compact"; }
+
 struct appearance_table {
+    record_kind kind = record_kind::averages;
     int record_words = 0;
-    std::vector<glm::ivec3> voxels;     // sorted by zyx_less
+    std::vector<glm::ivec3> voxels;     // sorted by ordinal_less
     std::vector<std::uint32_t> words;   // voxels.size() * record_words
+    std::vector<std::uint32_t> faces;   // the compact records' face pool
 
     std::size_t size() const { return voxels.size(); }
     std::span<const std::uint32_t> record(std::size_t row) const {
         return {words.data() + row * std::size_t(record_words), std::size_t(record_words)};
     }
     std::optional<std::size_t> row_of(glm::ivec3 voxel) const {
-        auto it = std::lower_bound(voxels.begin(), voxels.end(), voxel, zyx_less);
+        auto it = std::lower_bound(voxels.begin(), voxels.end(), voxel, ordinal_less);
         if (it == voxels.end() || *it != voxel) return std::nullopt;
         return std::size_t(it - voxels.begin());
     }
-    double bytes_per_voxel() const { return 4.0 * record_words; }
+    double bytes_per_voxel() const {
+        return voxels.empty() ? 0.0 : 4.0 * double(words.size() + faces.size()) / double(voxels.size());
+    }
 };
 
 }  // namespace voxray::appearance

@@ -39,36 +39,54 @@ struct voxel_samples {
 // Steps over a cut-out surface before a ray gives up (an alpha-tested stack of cards).
 inline constexpr int max_cut_out_layers = 64;
 
+// What a ray segment inside a voxel meets first: nothing, a surface that only occludes
+// (seen from behind, one-sided), or a sample.
+struct segment_hit {
+    bool hit = false, sample = false;
+    surface_sample seen;
+};
+
+// The first surface along the segment from `origin` (on the voxel's surface) for `length`.
+template <class Scene>
+segment_hit first_surface(const Scene& scene, const io::triangle_mesh& mesh, glm::dvec3 origin, glm::dvec3 direction,
+                          double length) {
+    const io::mesh_surface& s = mesh.surface;
+    constexpr float margin = 1e-4f;  // surfaces on the voxel's own faces count, from both sides
+    glm::vec3 dir(direction), org = glm::vec3(origin) - margin * dir;  // Embree wants tnear >= 0
+    float tnear = 0.0f, tfar = float(length) + 2.0f * margin;
+    for (int layer = 0; layer < max_cut_out_layers; ++layer) {
+        auto hit = scene.first_hit(org, dir, tnear, tfar);
+        if (!hit) break;
+        glm::vec4 colour(1.0f);
+        bool double_sided = false;
+        if (s.coloured()) {
+            const io::mesh_material& m = s.materials[s.triangle_materials[hit->triangle]];
+            colour = s.colour_at(hit->triangle, hit->barycentric);
+            double_sided = m.double_sided;
+            if (m.cuts() && colour.a < m.cutoff()) {  // cut out here: go on behind it
+                tnear = hit->t + std::max(margin, hit->t * 0x1.0p-18f);
+                continue;
+            }
+        }
+        bool front = glm::dot(hit->normal, dir) < 0.0f;
+        segment_hit out;
+        out.hit = true, out.sample = front || double_sided;
+        out.seen = {front ? hit->normal : -hit->normal, colour};
+        return out;
+    }
+    return {};
+}
+
 template <class Scene>
 void sample_voxel(const Scene& scene, const io::triangle_mesh& mesh, glm::ivec3 voxel, const sampling_options& o,
                   voxel_samples& out) {
     out.seen.clear();
     out.rays = o.rays, out.hits = 0;
-    const io::mesh_surface& s = mesh.surface;
-    constexpr float margin = 1e-4f;  // surfaces on the voxel's own faces count, from both sides
     for (std::uint32_t i = 0; i < o.rays; ++i) {
         sampling_ray ray = voxel_ray(voxel, i, o.rays, o.stratified, o.seed);
-        glm::vec3 dir(ray.direction), org = glm::vec3(ray.origin) - margin * dir;  // Embree wants tnear >= 0
-        float tnear = 0.0f, tfar = float(ray.length) + 2.0f * margin;
-        for (int layer = 0; layer < max_cut_out_layers; ++layer) {
-            auto hit = scene.first_hit(org, dir, tnear, tfar);
-            if (!hit) break;
-            glm::vec4 colour(1.0f);
-            bool double_sided = false;
-            if (s.coloured()) {
-                const io::mesh_material& m = s.materials[s.triangle_materials[hit->triangle]];
-                colour = s.colour_at(hit->triangle, hit->barycentric);
-                double_sided = m.double_sided;
-                if (m.cuts() && colour.a < m.cutoff()) {  // cut out here: go on behind it
-                    tnear = hit->t + std::max(margin, hit->t * 0x1.0p-18f);
-                    continue;
-                }
-            }
-            ++out.hits;
-            bool front = glm::dot(hit->normal, dir) < 0.0f;
-            if (front || double_sided) out.seen.push_back({front ? hit->normal : -hit->normal, colour});
-            break;
-        }
+        segment_hit h = first_surface(scene, mesh, ray.origin, ray.direction, ray.length);
+        out.hits += h.hit ? 1u : 0u;
+        if (h.sample) out.seen.push_back(h.seen);
     }
 }
 

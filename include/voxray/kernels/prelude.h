@@ -60,6 +60,7 @@ typedef bool vx_mask;
 #define vx_bits_f(x) as_float(x)
 #define vx_floor(x) floor(x)
 #define vx_log2(x) log2(x)
+#define vx_sqrt(x) sqrt(x)
 #define vx_any(m) (m)
 /* Frame words (read-write, one item per work-item; world/frame/passes.h), and their atomics. */
 #define VX_FRAME __global uint*
@@ -110,6 +111,7 @@ static inline float vx_fmax(float a, float b) { return a > b ? a : b; }
 #define vx_bits_f(x) uintBitsToFloat(x)
 #define vx_floor(x) floor(x)
 #define vx_log2(x) log2(x)
+#define vx_sqrt(x) sqrt(x)
 #define vx_any(m) (m)
 /* Frame words by address (world/frame/passes.h); the 64-bit view needs VX_INT64_ATOMICS
  * (backends/vulkan/shaders/dialect.glsl). `precise` keeps a*b+c two roundings, as in C++. */

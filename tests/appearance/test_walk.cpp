@@ -1,0 +1,154 @@
+// The compositing walk (appearance/walk.inc) on the CPU's scalar lanes over the dense grid:
+// opaque records stop it at the first-hit kernel's voxel; faint records blend every voxel
+// on the ray exactly once, as front-to-back compositing says; a voxel with no record is an
+// error that names it.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+
+#include "voxray/appearance/compact.hpp"
+#include "voxray/cpu/appearance_walk.hpp"
+#include "voxray/dense_grid/dense_grid.hpp"
+#include "voxray/rays/camera.hpp"
+#include "voxray/scenes/builtin.hpp"
+
+namespace voxray {
+namespace {
+
+using namespace appearance;
+
+// A compact table of `model`'s voxels, every one with the same opacity (0..15) and one face
+// of a colour that depends on the voxel, turned to -z.
+appearance_table uniform_table(const voxel_model& model, std::uint32_t opacity_q) {
+    appearance_table t;
+    t.kind = record_kind::compact;
+    t.record_words = VX_APP_COMPACT_WORDS;
+    model.for_each_voxel([&](glm::ivec3 p, std::uint8_t) { t.voxels.push_back(p); });
+    std::sort(t.voxels.begin(), t.voxels.end(), ordinal_less);
+    for (std::size_t row = 0; row < t.voxels.size(); ++row) {
+        std::uint32_t h1 = 1u, h2 = 0u;
+        for (unsigned k = 0; k < 6; ++k) h1 |= opacity_q << (8 + 4 * k);
+        for (unsigned k = 6; k < VX_APP_DIRECTIONS; ++k) h2 |= opacity_q << (4 * (k - 6));
+        t.words.insert(t.words.end(), {std::uint32_t(row), h1, h2});
+        glm::ivec3 v = t.voxels[row];
+        std::uint32_t r = std::uint32_t(v.x * 37) & 255u, g = std::uint32_t(v.y * 53) & 255u, b = 200u;
+        glm::vec2 e = octahedral({0, 0, -1});
+        t.faces.insert(t.faces.end(),
+                       {VX_APP_FACE_WORD0(r, g, b, 255u), VX_APP_FACE_WORD1(snorm(e.x, 12), snorm(e.y, 12), 0u)});
+    }
+    return t;
+}
+
+std::vector<ray> camera_rays(const voxel_model& model, int size) {
+    return primary_rays(auto_camera(model.bounds(), 1, 1), size, size);
+}
+
+TEST(appearance_walk, opaque_records_stop_at_the_first_hit_kernels_voxel) {
+    voxel_model model = scenes::make_builtin("noise50");
+    dense_grid grid(model);
+    std::vector<std::uint32_t> blob(grid.blob().begin(), grid.blob().end());
+    appearance_walker<kernels::dense_grid_kernel> walker(blob, uniform_table(model, 15), 2);
+    std::vector<ray> rays = camera_rays(model, 48);
+    std::vector<appearance_pixel> out = walker.walk(rays, {});
+    std::size_t hits = 0;
+    for (std::size_t i = 0; i < rays.size(); ++i) {
+        const ray& r = rays[i];
+        kernels::scalar::vx_ray lane{r.origin.x, r.origin.y, r.origin.z, r.tmin,
+                                     r.direction.x, r.direction.y, r.direction.z, r.tmax};
+        auto h = kernels::scalar::kernel_lanes<kernels::dense_grid_kernel>::trace<VX_MODE_CLOSEST>(blob.data(), lane);
+        ASSERT_EQ(out[i].status, h.status) << i;
+        if (h.status != VX_STATUS_HIT) {
+            EXPECT_EQ(out[i].visits, 0u);
+            EXPECT_EQ(out[i].transmittance, 1.0f);
+            continue;
+        }
+        ++hits;
+        EXPECT_EQ(glm::ivec3(out[i].x, out[i].y, out[i].z), glm::ivec3(h.x, h.y, h.z));
+        EXPECT_EQ(out[i].t, h.t);
+        EXPECT_EQ(out[i].face, h.face);
+        EXPECT_EQ(out[i].visits, 1u);
+        EXPECT_EQ(out[i].transmittance, 0.0f);
+    }
+    EXPECT_GT(hits, rays.size() / 4);
+}
+
+// The voxels a ray crosses inside [0, n)^3 (each for longer than `sliver`), in double.
+int crossed_voxels(const ray& r, int n, double sliver) {
+    glm::dvec3 o(r.origin), d(r.direction);
+    double t0 = 0, t1 = 1e30;
+    for (int a = 0; a < 3; ++a) {
+        double ta = (0 - o[a]) / d[a], tb = (n - o[a]) / d[a];
+        t0 = std::max(t0, std::min(ta, tb)), t1 = std::min(t1, std::max(ta, tb));
+    }
+    std::vector<double> cuts{t0, t1};
+    for (int a = 0; a < 3; ++a)
+        for (int c = 1; c < n; ++c) {
+            double t = (c - o[a]) / d[a];
+            if (t > t0 && t < t1) cuts.push_back(t);
+        }
+    std::sort(cuts.begin(), cuts.end());
+    int count = 0;
+    for (std::size_t i = 1; i < cuts.size(); ++i) count += cuts[i] - cuts[i - 1] > sliver ? 1 : 0;
+    return count;
+}
+
+TEST(appearance_walk, faint_records_blend_every_voxel_on_the_ray_once) {
+    voxel_model block;
+    const int n = 8;
+    for (int z = 0; z < n; ++z)
+        for (int y = 0; y < n; ++y)
+            for (int x = 0; x < n; ++x) block.set({x, y, z}, 1);
+    dense_grid grid(block);
+    appearance_table table = uniform_table(block, 1);  // opacity 1/15
+    appearance_walker<kernels::dense_grid_kernel> walker({grid.blob().begin(), grid.blob().end()}, table, 2);
+    std::mt19937_64 g(7);
+    std::uniform_real_distribution<float> u(-1.0f, 1.0f);
+    std::vector<ray> rays;
+    for (int i = 0; i < 2000; ++i) {
+        glm::vec3 target(4 + 3.5f * u(g), 4 + 3.5f * u(g), 4 + 3.5f * u(g));
+        glm::vec3 from = target + 20.0f * glm::normalize(glm::vec3(u(g), u(g), u(g)));
+        rays.push_back({from, 0.0f, glm::normalize(target - from), 1e30f});
+    }
+    rays.push_back({{0.5f, 0.5f, -3.0f}, 0.0f, {0.0f, 0.0f, 1.0f}, 1e30f});  // straight down a column
+    std::vector<appearance_pixel> out = walker.walk(rays, {.cutoff = 0.0f});
+    const float a = 1.0f / 15.0f;
+    int equal = 0;
+    for (std::size_t i = 0; i < rays.size(); ++i) {
+        int want = crossed_voxels(rays[i], n, 1e-5);
+        equal += int(out[i].visits) == want ? 1 : 0;
+        EXPECT_NEAR(out[i].transmittance, std::pow(1.0f - a, float(out[i].visits)), 1e-5f);
+    }
+    EXPECT_EQ(out.back().visits, 8u);
+    EXPECT_GE(equal, int(rays.size()) - 5) << "rays whose voxels were each blended once";
+    // Front to back: the colour is sum_i T_i a c_i with T_i = (1 - a)^i; down the column
+    // every voxel has the same red and green, so it is a (1 - (1 - a)^8) / a times one.
+    kernels::scalar::vx_app_light light{0.0f, 0.0f, -1.0f, 0.25f};
+    auto one = kernels::scalar::vx_app_compact_sample(table.words.data(), table.faces.data(), 0, 0, 1, light);
+    float sum = 0, transmittance = 1;
+    for (int i = 0; i < 8; ++i) sum += transmittance * a * one.r, transmittance *= 1 - a;
+    appearance_light down{.to_light = {0, 0, -1}, .ambient = 0.25f, .cutoff = 0.0f};
+    std::vector<appearance_pixel> column = walker.walk(std::span(rays).last(1), down);
+    EXPECT_NEAR(column[0].r, sum, 1e-6f);
+}
+
+TEST(appearance_walk, a_voxel_without_a_record_is_an_error_that_names_it) {
+    voxel_model model;
+    model.set({2, 3, 4}, 1);
+    model.set({2, 3, 9}, 1);
+    voxel_model fewer;
+    fewer.set({2, 3, 4}, 1);
+    dense_grid grid(model);
+    appearance_walker<kernels::dense_grid_kernel> walker({grid.blob().begin(), grid.blob().end()},
+                                                         uniform_table(fewer, 4), 1);
+    std::vector<ray> rays{{{2.5f, 3.5f, 0.0f}, 0.0f, {0.0f, 0.0f, 1.0f}, 1e30f}};
+    try {
+        walker.walk(rays, {});
+        FAIL() << "no error";
+    } catch (const std::exception& e) {
+        EXPECT_NE(std::string(e.what()).find("(2, 3, 9)"), std::string::npos) << e.what();
+    }
+}
+
+}  // namespace
+}  // namespace voxray
