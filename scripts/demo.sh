@@ -4,7 +4,7 @@
 # into a results file and print its table, the editing figures of brickmap and NAADF, and
 # an open world built chunk by chunk and streamed along a camera path, traced ray by ray
 # and drawn by the GPU-driven passes; then chunk meshes with POP levels of detail, coloured
-# meshes and moving entities.
+# meshes, filtered appearance against the triangles and moving entities.
 set -euo pipefail
 source "$(dirname "${BASH_SOURCE[0]}")/setup.sh"
 install_packages
@@ -59,6 +59,9 @@ DATA="${VOXRAY_DATA_DIR:-$ROOT/../shared/data}"
     --out "$OUT/coloured_helmet.png" 2>/dev/null
 "$VOXRAY" render "$DATA/mesh/realistic_trees/scene.gltf" --resolution 512 --width 960 --height 540 \
     --out "$OUT/coloured_trees.png" 2>/dev/null
+echo "== filtered appearance: the small tree at 128^3 against its triangles (Embree, 256 samples a pixel), averages and ours"
+"$VOXRAY" appearance-bench "$DATA/mesh/small_tree/scene.gltf" --resolution 128 --views 1 --threads 2 \
+    --images "$OUT/appearance" 2>/dev/null || status=1
 echo "== moving entities: 3,000 deer and trees (shared models) over builtin:terrain:512, 6 frames of their motion (naadf, vulkan), then checked"
 /usr/bin/python3 "$ROOT/scripts/make_entity_scene.py" "$OUT/herd.json" --world builtin:terrain:512 --count 3000 \
     --extent 512 512 131 --data "$DATA"
@@ -66,5 +69,5 @@ mkdir -p "$OUT/entities"
 "$VOXRAY" render "$OUT/herd.json" --frames 6 --structure naadf --backend vulkan --width 960 --height 540 \
     --out "$OUT/entities/frame.png" 2>/dev/null
 "$VOXRAY" check "$OUT/herd.json" --frames 2 --rays 20000 --backends cpu,vulkan 2>/dev/null | tail -n 5 || status=1
-echo "== images (entities/frame_*.png, coloured_*.png too), results.jsonl, mesh.jsonl, terrain64_level2.glb, mesh_raster_*.png, world_raster_frames/raster_and_traced_*.png, plots (mrays.png, speed_vs_memory.png, steps.png) and table.md in $OUT"
+echo "== images (entities/frame_*.png, coloured_*.png, appearance/*.png too), results.jsonl, mesh.jsonl, terrain64_level2.glb, mesh_raster_*.png, world_raster_frames/raster_and_traced_*.png, plots (mrays.png, speed_vs_memory.png, steps.png) and table.md in $OUT"
 exit ${status}

@@ -1,7 +1,7 @@
 // The compositing walk (appearance/walk.inc) on the CPU's scalar lanes over the dense grid:
 // opaque records stop it at the first-hit kernel's voxel; faint records blend every voxel
-// on the ray exactly once, as front-to-back compositing says; a voxel with no record is an
-// error that names it.
+// on the ray exactly once, touching voxels adding their coverage, voxels apart as layers; a
+// voxel with no record is an error that names it.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -117,19 +117,35 @@ TEST(appearance_walk, faint_records_blend_every_voxel_on_the_ray_once) {
     for (std::size_t i = 0; i < rays.size(); ++i) {
         int want = crossed_voxels(rays[i], n, 1e-5);
         equal += int(out[i].visits) == want ? 1 : 0;
-        EXPECT_NEAR(out[i].transmittance, std::pow(1.0f - a, float(out[i].visits)), 1e-5f);
+        // One run of touching voxels: their coverages add up.
+        EXPECT_NEAR(out[i].transmittance, std::max(0.0f, 1.0f - a * float(out[i].visits)), 1e-5f);
     }
     EXPECT_EQ(out.back().visits, 8u);
     EXPECT_GE(equal, int(rays.size()) - 5) << "rays whose voxels were each blended once";
-    // Front to back: the colour is sum_i T_i a c_i with T_i = (1 - a)^i; down the column
-    // every voxel has the same red and green, so it is a (1 - (1 - a)^8) / a times one.
+    // Down the column every voxel has the same colour c, and each adds a c in full: 8 a c.
     kernels::scalar::vx_app_light light{0.0f, 0.0f, -1.0f, 0.25f};
     auto one = kernels::scalar::vx_app_compact_sample(table.words.data(), table.faces.data(), 0, 0, 1, light);
-    float sum = 0, transmittance = 1;
-    for (int i = 0; i < 8; ++i) sum += transmittance * a * one.r, transmittance *= 1 - a;
     appearance_light down{.to_light = {0, 0, -1}, .ambient = 0.25f, .cutoff = 0.0f};
     std::vector<appearance_pixel> column = walker.walk(std::span(rays).last(1), down);
-    EXPECT_NEAR(column[0].r, sum, 1e-6f);
+    EXPECT_NEAR(column[0].r, 8.0f * a * one.r, 1e-6f);
+}
+
+// Voxels apart along a ray are separate layers: T = (1 - a)^2, C = a c + (1 - a) a c.
+TEST(appearance_walk, voxels_apart_blend_as_independent_layers) {
+    voxel_model two;
+    two.set({0, 0, 0}, 1);
+    two.set({0, 0, 2}, 1);
+    dense_grid grid(two);
+    appearance_table table = uniform_table(two, 6);
+    appearance_walker<kernels::dense_grid_kernel> walker({grid.blob().begin(), grid.blob().end()}, table, 1);
+    std::vector<ray> column{{{0.5f, 0.5f, -3.0f}, 0.0f, {0.0f, 0.0f, 1.0f}, 1e30f}};
+    appearance_light down{.to_light = {0, 0, -1}, .ambient = 0.25f, .cutoff = 0.0f};
+    appearance_pixel p = walker.walk(column, down)[0];
+    kernels::scalar::vx_app_light light{0.0f, 0.0f, -1.0f, 0.25f};
+    auto one = kernels::scalar::vx_app_compact_sample(table.words.data(), table.faces.data(), 0, 0, 1, light);
+    EXPECT_EQ(p.visits, 2u);
+    EXPECT_NEAR(p.transmittance, (1 - one.a) * (1 - one.a), 1e-6f);
+    EXPECT_NEAR(p.r, one.a * one.r + (1 - one.a) * one.a * one.r, 1e-6f);
 }
 
 TEST(appearance_walk, a_voxel_without_a_record_is_an_error_that_names_it) {

@@ -56,6 +56,44 @@
  *  spread    how far its normals stray from the mean: the tangent of the quadrature ring's
  *            angle (record.h), 0..255 for 0..VX_APP_SPREAD_MAX
  *
+ * The *six directions* record (the baseline after Crassin et al.'s anisotropic voxels): what
+ * the voxel shows to rays travelling along each of the 6 axis directions, lit by one light
+ * (so a table is made for a light), one word each, word 2a + (1 if the direction is -a):
+ *
+ *  word d   31        24 23        16 15         8 7          0
+ *          +------------+------------+------------+------------+
+ *          |  opacity   |     b      |     g      |     r      |
+ *          +------------+------------+------------+------------+
+ *          (the bits of the averages record's word 0, read by the same VX_APP_AVG_* macros)
+ *
+ *  r, g, b   the mean lit colour (sRGB code) of the surfaces that rays of that direction saw
+ *            from the front in the voxel
+ *  opacity   the share of those rays that stopped, 0..255
+ *
+ * The *SGGX* record (the baseline after Vicini et al. 2021: an SGGX distribution of normals
+ * and their non-exponential transmittance), three words:
+ *
+ *  word 0   31        24 23        16 15         8 7          0
+ *          +------------+------------+------------+------------+
+ *          |   gamma    |     b      |     g      |     r      |
+ *          +------------+------------+------------+------------+
+ *  word 1   31        24 23        16 15         8 7          0
+ *          +------------+------------+------------+------------+
+ *          |  density   |  sigma z   |  sigma y   |  sigma x   |
+ *          +------------+------------+------------+------------+
+ *  word 2   31        24 23        16 15         8 7          0
+ *          +------------+------------+------------+------------+
+ *          |     0      |   r yz     |   r xz     |   r xy     |
+ *          +------------+------------+------------+------------+
+ *
+ *  r, g, b       the mean colour of the samples (sRGB code)
+ *  sigma a       sqrt(S_aa), 0..255 for 0..1; r ab = S_ab / (sigma a sigma b), signed 8-bit
+ *                (Heitz et al.'s six parameters of the SGGX matrix S)
+ *  density       rho, 0..255 for 0..VX_APP_SGGX_DENSITY_MAX: the optical depth along unit w
+ *                is rho sqrt(w^T S w) / (|w_x| + |w_y| + |w_z|), the projected area over the
+ *                voxel's mean chord
+ *  gamma         0..255 for 0..1: T = gamma exp(-tau) + (1 - gamma) max(1 - tau / 2, 0)
+ *
  * The 13 opacity directions: the 3 axes, the 6 face diagonals and the 4 body diagonals of
  * the cube, k = 0..12. Component c of direction k (unnormalised, -1, 0 or 1) is
  * VX_APP_DIR(k, c), a float; its length is 1, sqrt 2 or sqrt 3 as it has 1, 2 or 3 non-zero parts.
@@ -78,6 +116,10 @@
 #define VX_APP_AVG_NORMAL_U(w1) ((w1) & 0xFFFFu)
 #define VX_APP_AVG_NORMAL_V(w1) (((w1) >> 16) & 0xFFFFu)
 #define VX_APP_AVG_WORD1(u16, v16) ((u16) | ((v16) << 16))
+
+#define VX_APP_SIX_WORDS 6
+#define VX_APP_SGGX_WORDS 3
+#define VX_APP_SGGX_DENSITY_MAX 32.0f
 
 #define VX_APP_COMPACT_WORDS 3
 #define VX_APP_FACE_WORDS 2

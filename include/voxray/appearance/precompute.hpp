@@ -13,6 +13,8 @@
 
 #include "voxray/appearance/averages.hpp"
 #include "voxray/appearance/compact.hpp"
+#include "voxray/appearance/sggx_baseline.hpp"
+#include "voxray/appearance/six_directions.hpp"
 #include "voxray/appearance/table.hpp"
 #include "voxray/appearance/voxel_sampler.hpp"
 #include "voxray/core/error.hpp"
@@ -24,6 +26,7 @@ namespace voxray::appearance {
 struct precompute_options {
     record_kind kind = record_kind::averages;
     sampling_options sampling;
+    directional_light light;      // six: the light its colours are lit by
     unsigned opacity_strata = 2;  // compact: n x n parallel rays a face, per opacity direction
     unsigned threads = 0;         // 0: every hardware thread
 };
@@ -34,6 +37,16 @@ struct precompute_stats {
     double rays_per_second() const { return seconds > 0 ? double(rays) / seconds : 0; }
     double us_per_voxel() const { return voxels ? seconds * 1e6 / double(voxels) : 0; }
 };
+
+inline int record_words(record_kind k) {
+    switch (k) {
+    case record_kind::averages: return VX_APP_AVERAGES_WORDS;
+    case record_kind::compact: return VX_APP_COMPACT_WORDS;
+    case record_kind::six: return VX_APP_SIX_WORDS;
+    case record_kind::sggx: return VX_APP_SGGX_WORDS;
+    }
+    fail("appearance precompute: unknown record kind ", int(k));
+}
 
 // Opacity rays a voxel: each of the 13 directions enters through 1, 2 or 3 faces.
 inline std::uint64_t opacity_rays_per_voxel(unsigned strata) { return 27ull * strata * strata; }
@@ -47,7 +60,7 @@ appearance_table precompute(const Scene& scene, const io::triangle_mesh& mesh, c
     auto start = std::chrono::steady_clock::now();
     appearance_table t;
     t.kind = o.kind;
-    t.record_words = compact ? VX_APP_COMPACT_WORDS : VX_APP_AVERAGES_WORDS;
+    t.record_words = record_words(o.kind);
     model.for_each_voxel([&](glm::ivec3 p, std::uint8_t) { t.voxels.push_back(p); });
     std::sort(t.voxels.begin(), t.voxels.end(), ordinal_less);
     t.words.assign(t.voxels.size() * std::size_t(t.record_words), 0);
@@ -64,8 +77,18 @@ appearance_table precompute(const Scene& scene, const io::triangle_mesh& mesh, c
                 sample_voxel(scene, mesh, t.voxels[row], o.sampling, samples);
                 mine += samples.hits;
                 auto* words = t.words.data() + row * std::size_t(t.record_words);
-                if (!compact) {
+                if (o.kind == record_kind::averages) {
                     auto record = averages_record(samples);
+                    std::copy(record.begin(), record.end(), words);
+                    continue;
+                }
+                if (o.kind == record_kind::six) {
+                    auto record = six_directions_record(samples, o.light);
+                    std::copy(record.begin(), record.end(), words);
+                    continue;
+                }
+                if (o.kind == record_kind::sggx) {
+                    auto record = sggx_record(samples);
                     std::copy(record.begin(), record.end(), words);
                     continue;
                 }

@@ -25,9 +25,17 @@ inline bool ordinal_less(glm::ivec3 a, glm::ivec3 b) {
 }
 
 // The records a table can hold (layout.h).
-enum class record_kind { averages, compact };
+enum class record_kind { averages, compact, six, sggx };
 
-inline const char* record_name(record_kind k) { return k == record_kind::averages ? "averages" : "compact"; }
+inline const char* record_name(record_kind k) {
+    switch (k) {
+    case record_kind::averages: return "averages";
+    case record_kind::compact: return "compact";
+    case record_kind::six: return "six";
+    case record_kind::sggx: return "sggx";
+    }
+    return "unknown";
+}
 
 struct appearance_table {
     record_kind kind = record_kind::averages;

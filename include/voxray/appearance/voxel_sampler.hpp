@@ -31,9 +31,18 @@ struct surface_sample {
     glm::vec4 colour{1.0f};     // linear RGBA
 };
 
+// One sampling ray's outcome: its direction, whether it stopped inside the voxel, and its
+// sample in `seen` (or -1: a miss, or a surface seen from behind).
+struct ray_outcome {
+    glm::vec3 direction{0.0f};
+    bool hit = false;
+    std::int32_t sample = -1;
+};
+
 struct voxel_samples {
     std::vector<surface_sample> seen;
-    std::uint32_t rays = 0, hits = 0;  // hits: rays stopped inside the voxel (samples or occlusion)
+    std::vector<ray_outcome> outcomes;  // one a ray, in ray order
+    std::uint32_t rays = 0, hits = 0;   // hits: rays stopped inside the voxel (samples or occlusion)
 };
 
 // Steps over a cut-out surface before a ray gives up (an alpha-tested stack of cards).
@@ -81,11 +90,13 @@ template <class Scene>
 void sample_voxel(const Scene& scene, const io::triangle_mesh& mesh, glm::ivec3 voxel, const sampling_options& o,
                   voxel_samples& out) {
     out.seen.clear();
+    out.outcomes.clear();
     out.rays = o.rays, out.hits = 0;
     for (std::uint32_t i = 0; i < o.rays; ++i) {
         sampling_ray ray = voxel_ray(voxel, i, o.rays, o.stratified, o.seed);
         segment_hit h = first_surface(scene, mesh, ray.origin, ray.direction, ray.length);
         out.hits += h.hit ? 1u : 0u;
+        out.outcomes.push_back({glm::vec3(ray.direction), h.hit, h.sample ? std::int32_t(out.seen.size()) : -1});
         if (h.sample) out.seen.push_back(h.seen);
     }
 }

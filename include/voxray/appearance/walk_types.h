@@ -3,6 +3,8 @@
  * kernels/ray.h, record.h and ordinal.h. Included once per lane set; no include guard. */
 #define VX_APP_KIND_AVERAGES 0u
 #define VX_APP_KIND_COMPACT 1u
+#define VX_APP_KIND_SIX 2u
+#define VX_APP_KIND_SGGX 3u
 /* The walk met a voxel the ordinal index does not know: the table is not this structure's. */
 #define VX_APP_WALK_NO_RECORD 3u
 
@@ -17,7 +19,7 @@ VX_STRUCT(vx_app_walk_result)
     uint status;          /* VX_STATUS_HIT or _MISS for the first voxel, or VX_APP_WALK_NO_RECORD */
 VX_END_STRUCT(vx_app_walk_result)
 
-VX_FN vx_app_walk_result vx_app_walk_start() {
+VX_FN vx_app_walk_result vx_app_walk_start(void) {
     vx_app_walk_result w;
     w.r = 0.0f, w.g = 0.0f, w.b = 0.0f, w.transmittance = 1.0f, w.t = VX_INF;
     w.x = 0, w.y = 0, w.z = 0, w.face = 0u, w.visits = 0u, w.steps = 0u, w.status = VX_STATUS_MISS;
@@ -38,5 +40,8 @@ VX_FN vx_app_sample vx_app_record_sample(VX_BLOB records, VX_BLOB faces, uint ki
                                          float dz, vx_app_light light) {
     if (kind == VX_APP_KIND_AVERAGES)
         return vx_app_averages_sample(vx_blob_at(records, row * VX_APP_AVERAGES_WORDS), dx, dy, dz, light);
+    if (kind == VX_APP_KIND_SIX) return vx_app_six_sample(vx_blob_at(records, row * VX_APP_SIX_WORDS), dx, dy, dz);
+    if (kind == VX_APP_KIND_SGGX)
+        return vx_app_sggx_sample(vx_blob_at(records, row * VX_APP_SGGX_WORDS), dx, dy, dz, light);
     return vx_app_compact_sample(vx_blob_at(records, row * VX_APP_COMPACT_WORDS), faces, dx, dy, dz, light);
 }

@@ -75,9 +75,13 @@ struct camera_frame {
     }
 
     // The ray through pixel (x, y)'s centre; (0, 0) is the top-left pixel.
-    ray pixel(int x, int y) const {
-        float u = ((float(x) + 0.5f) / float(width) * 2.0f - 1.0f) * half_w;
-        float v = (1.0f - (float(y) + 0.5f) / float(height) * 2.0f) * half_h;
+    ray pixel(int x, int y) const { return through(float(x) + 0.5f, float(y) + 0.5f); }
+
+    // The ray through point (px, py) of the picture, in pixels from its top-left corner
+    // (several rays a pixel).
+    ray through(float px, float py) const {
+        float u = (px / float(width) * 2.0f - 1.0f) * half_w;
+        float v = (1.0f - py / float(height) * 2.0f) * half_h;
         ray r;
         r.origin = origin;
         r.direction = glm::normalize(forward + u * right + v * up);

@@ -47,8 +47,7 @@ public:
     appearance_walker(std::vector<std::uint32_t> blob, const appearance::appearance_table& table,
                       unsigned threads = 0)
         : blob_(std::move(blob)), index_(appearance::ordinal_index(table)), records_(table.words),
-          faces_(table.faces), kind_(table.kind == appearance::record_kind::compact ? VX_APP_KIND_COMPACT
-                                                                                     : VX_APP_KIND_AVERAGES),
+          faces_(table.faces), kind_(kind_of(table.kind)),
           pool_(std::make_unique<cpu_detail::thread_pool>(threads)) {
         if (faces_.empty()) faces_.push_back(0);  // a valid pointer for tables without faces
         if (records_.empty()) records_.push_back(0);
@@ -77,6 +76,16 @@ public:
     }
 
 private:
+    static std::uint32_t kind_of(appearance::record_kind k) {
+        switch (k) {
+        case appearance::record_kind::averages: return VX_APP_KIND_AVERAGES;
+        case appearance::record_kind::compact: return VX_APP_KIND_COMPACT;
+        case appearance::record_kind::six: return VX_APP_KIND_SIX;
+        case appearance::record_kind::sggx: return VX_APP_KIND_SGGX;
+        }
+        fail("appearance walk: unknown record kind ", int(k));
+    }
+
     std::vector<std::uint32_t> blob_, index_, records_, faces_;
     std::uint32_t kind_;
     std::unique_ptr<cpu_detail::thread_pool> pool_;

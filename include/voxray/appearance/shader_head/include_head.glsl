@@ -1,0 +1,23 @@
+// voxray: appearance records for your own GLSL shaders. Generated from the portable kernels
+// that voxray's own backends compile (cmake/voxray_kernels.cmake): do not edit.
+//
+// Include it right after #version 450 (and your own #extension lines), beside a tracing
+// include if you like (the dialect is guarded):
+//
+//   #version 450
+//   #extension GL_GOOGLE_include_directive : require
+//   #include "voxray/shaders/appearance.glsl"
+//   #include "voxray/shaders/dense_grid.glsl"
+//   ...
+//   vx_hit h = vx_dense_grid_trace(vx_words(blob_address), r, VX_MODE_CLOSEST);
+//   uint row = vx_app_row(vx_words(index_address), h.x, h.y, h.z);      // VX_APP_NO_ROW: none
+//   vx_app_sample s = vx_app_record_sample(vx_words(records_address), vx_words(faces_address),
+//                                          VX_APP_KIND_COMPACT, row, r.dx, r.dy, r.dz, light);
+//
+//   index    appearance::ordinal_index(table) words; records: table.words; faces: table.faces
+//            (any valid address when the table has none), all by buffer device address
+//   kind     VX_APP_KIND_AVERAGES, _COMPACT, _SIX or _SGGX, as the table's record_kind
+//   (dx, dy, dz) the unit direction the ray travels; light: vx_app_light { lx, ly, lz, ambient }
+//   vx_app_sample { float r, g, b, a; }: linear colour and opacity; blend front to back.
+// The values are bit-identical to the C++ backends'. Compile with glslangValidator -V
+// --target-env vulkan1.2 -I<voxray prefix>/include.

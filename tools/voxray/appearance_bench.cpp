@@ -1,0 +1,257 @@
+// voxray appearance-bench: how voxels look from afar against the triangles they replaced
+// (issue 25). For one mesh at one resolution: the appearance tables of each method
+// precomputed with Embree (bytes and µs a voxel), then for each view and for a light in
+// front and one behind, the reference (Embree on the triangles, --reference-spp stratified
+// samples a pixel) and every method's picture by the compositing walk (4 rays a pixel):
+// averages, SGGX, six directions (made for each light) and ours (the compact record),
+// compared in sRGB: MSE (all pixels, and the pixels the reference covers), PSNR and SSIM
+// (scikit-image's parameters, per channel; scripts/appearance_table.py checks them with
+// scikit-image itself). One JSON line per method, view and light after a header line.
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+
+#include <nlohmann/json.hpp>
+
+#include "bench_header.hpp"
+#include "cli.hpp"
+#include "image_writer.hpp"
+#include "output.hpp"
+#include "ssim.hpp"
+#include "timing.hpp"
+#include "voxray/io/surface_sample.hpp"
+#include "voxray/rays/camera.hpp"
+
+#if VOXRAY_WITH_EMBREE
+#include "appearance_reference.hpp"
+#include "voxray/appearance/precompute.hpp"
+#include "voxray/cpu/appearance_walk.hpp"
+#include "voxray/dense_grid/dense_grid.hpp"
+#include "voxray/embree/triangle_scene.hpp"
+#include "voxray/gltf/coloured_mesh.hpp"
+#endif
+
+namespace voxray::tool {
+
+namespace {
+
+struct appearance_bench_options {
+    std::string mesh;
+    int resolution = 128;
+    int size = 0;            // picture side in pixels; 0: the resolution, as in the paper
+    int views = 3;
+    int reference_side = 16;  // 16 x 16 = 256 samples a pixel (the paper: 1024)
+    unsigned threads = 2;
+    std::string json, images;
+};
+
+#if VOXRAY_WITH_EMBREE
+
+std::vector<std::uint8_t> srgb8(const linear_picture& p) {
+    std::vector<std::uint8_t> out;
+    out.reserve(p.rgb.size() * 3);
+    for (glm::vec3 c : p.rgb) {
+        rgba e = io::encode_srgb8(glm::vec4(glm::clamp(c, 0.0f, 1.0f), 1.0f));
+        out.insert(out.end(), {e.r, e.g, e.b});
+    }
+    return out;
+}
+
+struct picture_errors {
+    double mse = 0, mse_foreground = 0, psnr = 0, ssim = 0;
+};
+
+picture_errors compare(const std::vector<std::uint8_t>& ref, const std::vector<std::uint8_t>& got,
+                       const std::vector<float>& coverage, int w, int h) {
+    picture_errors e;
+    double all = 0, fg = 0;
+    std::size_t fg_pixels = 0;
+    for (std::size_t i = 0; i < coverage.size(); ++i) {
+        double sq = 0;
+        for (int c = 0; c < 3; ++c) {
+            double d = (double(ref[3 * i + c]) - double(got[3 * i + c])) / 255.0;
+            sq += d * d;
+        }
+        all += sq;
+        if (coverage[i] > 0) fg += sq, ++fg_pixels;
+    }
+    e.mse = all / double(3 * coverage.size());
+    e.mse_foreground = fg_pixels ? fg / double(3 * fg_pixels) : 0.0;
+    e.psnr = e.mse > 0 ? 10.0 * std::log10(1.0 / e.mse) : 99.0;
+    e.ssim = ssim_rgb8_channels(ref, got, w, h);
+    return e;
+}
+
+// The light in front (from behind the camera, above) or behind the model (facing it).
+glm::vec3 light_direction(const camera& cam, bool front) {
+    glm::vec3 to_eye = glm::normalize(cam.position - cam.target);
+    glm::vec3 horizontal = to_eye - glm::dot(to_eye, cam.up) * cam.up;
+    if (glm::length(horizontal) < 1e-4f) horizontal = glm::vec3(1, 0, 0);
+    horizontal = glm::normalize(horizontal);
+    return glm::normalize((front ? horizontal : -horizontal) + 0.8f * cam.up);
+}
+
+struct method_table {
+    std::string name;
+    appearance::appearance_table table;
+    appearance::precompute_stats stats;
+};
+
+method_table precompute_method(const embree::triangle_scene& scene, const io::triangle_mesh& mesh,
+                               const voxel_model& model, const char* name, appearance::record_kind kind,
+                               const shading& light, unsigned threads) {
+    method_table m{name, {}, {}};
+    m.table = appearance::precompute(
+        scene, mesh, model,
+        {.kind = kind, .sampling = {}, .light = {light.to_light, light.ambient}, .threads = threads}, &m.stats);
+    return m;
+}
+
+struct walked_picture {
+    linear_picture picture;
+    double seconds = 0, steps = 0, visits = 0;  // steps and visits: means a ray
+};
+
+// Four rays a pixel (`rays`, pixel by pixel), blended over the background.
+walked_picture walk_picture(const std::vector<std::uint32_t>& blob, const method_table& m, const std::vector<ray>& rays,
+                            const shading& light, int size, unsigned threads) {
+    appearance_walker<kernels::dense_grid_kernel> walker(blob, m.table, threads);
+    walked_picture w;
+    auto start = std::chrono::steady_clock::now();
+    std::vector<appearance_pixel> px = walker.walk(rays, {.to_light = light.to_light, .ambient = light.ambient});
+    w.seconds = seconds_since(start);
+    w.picture = {size, size, std::vector<glm::vec3>(std::size_t(size) * std::size_t(size), glm::vec3(0.0f)), {}};
+    for (std::size_t i = 0; i < px.size(); ++i) {
+        glm::vec3 c = glm::vec3(px[i].r, px[i].g, px[i].b) + px[i].transmittance * light.background;
+        w.picture.rgb[i / 4] += 0.25f * c;
+        w.steps += px[i].steps, w.visits += px[i].visits;
+    }
+    w.steps /= double(px.size()), w.visits /= double(px.size());
+    return w;
+}
+
+void write_strip(const std::vector<std::vector<std::uint8_t>>& parts, int size, const std::string& path) {
+    std::vector<std::uint8_t> joined;
+    for (int y = 0; y < size; ++y)
+        for (const auto& part : parts)
+            joined.insert(joined.end(), part.begin() + std::ptrdiff_t(3 * std::size_t(y) * std::size_t(size)),
+                          part.begin() + std::ptrdiff_t(3 * std::size_t(y + 1) * std::size_t(size)));
+    write_image(path, size * int(parts.size()), size, joined);
+}
+
+int appearance_bench(const appearance_bench_options& o) {
+    const int size = o.size ? o.size : o.resolution;
+    std::unique_ptr<output_file> out;
+    if (!o.json.empty()) {
+        out = std::make_unique<output_file>(o.json, "--json");
+        nlohmann::json header = results_header(own_command_line(), 1);
+        header["format"] = "voxray-appearance-bench-1";
+        out->stream() << header.dump() << "\n";
+    }
+    if (!o.images.empty()) std::filesystem::create_directories(o.images);
+    io::triangle_mesh mesh = gltf::load_coloured_mesh(o.mesh);
+    voxel_model model = io::voxelize(mesh, {.resolution = o.resolution, .threads = o.threads});
+    model.up_axis = 1;
+    embree::triangle_scene scene(mesh, io::make_grid_map(mesh.bounds(), o.resolution));
+    std::filesystem::path mesh_path(o.mesh);
+    std::string folder = mesh_path.parent_path().filename().string();
+    std::string scene_name = folder + "/" + mesh_path.filename().string();
+    std::fprintf(stderr, "%s at %d: %llu voxels\n", scene_name.c_str(), o.resolution,
+                 (unsigned long long)model.voxel_count());
+    dense_grid grid(model);
+    std::vector<std::uint32_t> blob(grid.blob().begin(), grid.blob().end());
+
+    // Averages, SGGX and ours do not depend on the light; six directions is made for each.
+    method_table averages = precompute_method(scene, mesh, model, "averages", appearance::record_kind::averages, {},
+                                              o.threads);
+    method_table sggx = precompute_method(scene, mesh, model, "sggx", appearance::record_kind::sggx, {}, o.threads);
+    method_table ours = precompute_method(scene, mesh, model, "ours", appearance::record_kind::compact, {}, o.threads);
+    std::printf("%-24s %4s %4s %-6s %-9s %9s %9s %7s %7s %7s %9s %9s\n", "scene", "res", "view", "light", "method",
+                "mse", "mse fg", "psnr", "ssim", "B/voxel", "us/voxel", "walk fps");
+    for (int view = 0; view < o.views; ++view) {
+        camera cam = auto_camera(model.bounds(), model.up_axis, view * 8 / o.views);
+        std::vector<shading> lights;
+        for (bool front : {true, false}) lights.push_back({light_direction(cam, front), 0.2f, glm::vec3(0.2f)});
+        auto reference = reference_pictures(scene, mesh, cam, size, size, o.reference_side, lights, o.threads);
+        camera_frame frame(cam, size, size);
+        std::vector<ray> rays;  // 4 a pixel, at the centres of its 2 x 2 strata
+        for (int y = 0; y < size; ++y)
+            for (int x = 0; x < size; ++x)
+                for (int s = 0; s < 4; ++s)
+                    rays.push_back(frame.through(float(x) + 0.25f + 0.5f * float(s & 1),
+                                                 float(y) + 0.25f + 0.5f * float(s >> 1)));
+        for (std::size_t l = 0; l < lights.size(); ++l) {
+            const char* light_name = l == 0 ? "front" : "behind";
+            std::vector<std::uint8_t> ref8 = srgb8(reference[l]);
+            std::vector<std::vector<std::uint8_t>> strip{ref8};  // reference | each method
+            method_table six =
+                precompute_method(scene, mesh, model, "six", appearance::record_kind::six, lights[l], o.threads);
+            for (const method_table* method : {&averages, &sggx, &six, &ours}) {  // the strip's order
+                const method_table& m = *method;
+                walked_picture w = walk_picture(blob, m, rays, lights[l], size, o.threads);
+                std::vector<std::uint8_t> got8 = srgb8(w.picture);
+                picture_errors e = compare(ref8, got8, reference[l].coverage, size, size);
+                std::printf("%-24s %4d %4d %-6s %-9s %9.5f %9.5f %7.2f %7.4f %7.1f %9.1f %9.2f\n", scene_name.c_str(),
+                            o.resolution, view, light_name, m.name.c_str(), e.mse, e.mse_foreground, e.psnr, e.ssim,
+                            m.table.bytes_per_voxel(), m.stats.us_per_voxel(), 1.0 / w.seconds);
+                std::fflush(stdout);
+                if (out)
+                    out->stream() << nlohmann::json{{"scene", scene_name}, {"resolution", o.resolution}, {"size", size},
+                                                    {"view", view}, {"light", light_name}, {"method", m.name},
+                                                    {"mse", e.mse}, {"mse_foreground", e.mse_foreground},
+                                                    {"psnr", e.psnr}, {"ssim", e.ssim},
+                                                    {"bytes_per_voxel", m.table.bytes_per_voxel()},
+                                                    {"precompute_us_per_voxel", m.stats.us_per_voxel()},
+                                                    {"precompute_rays_per_second", m.stats.rays_per_second()},
+                                                    {"precompute_threads", o.threads}, {"voxels", model.voxel_count()},
+                                                    {"reference_spp", o.reference_side * o.reference_side},
+                                                    {"rays_per_pixel", 4}, {"walk_seconds", w.seconds},
+                                                    {"walk_fps", 1.0 / w.seconds}, {"walk_threads", o.threads},
+                                                    {"steps_per_ray", w.steps}, {"visits_per_ray", w.visits}}
+                                         .dump()
+                                  << "\n";
+                strip.push_back(std::move(got8));
+            }
+            if (!o.images.empty())
+                write_strip(strip, size,
+                            (std::filesystem::path(o.images) / (folder + "_" + std::to_string(o.resolution) + "_view" +
+                                                                 std::to_string(view) + "_" + light_name + ".png"))
+                                .string());
+        }
+    }
+    if (out) out->finish();
+    return 0;
+}
+
+#else
+
+int appearance_bench(const appearance_bench_options&) {
+    fail("appearance-bench needs Embree (the precompute and the reference trace triangles): this build has none");
+}
+
+#endif
+
+}  // namespace
+
+command add_appearance_bench(CLI::App& parent) {
+    auto* app = parent.add_subcommand("appearance-bench",
+                                      "filtered voxel appearance against the triangles: quality, memory, time");
+    auto o = std::make_shared<appearance_bench_options>();
+    app->add_option("mesh", o->mesh, "a coloured mesh (.gltf, .glb, .obj, .ply)")->required()->check(CLI::ExistingFile);
+    app->add_option("--resolution", o->resolution, "voxels along the mesh's longest axis")
+        ->check(CLI::Range(8, 1024))->capture_default_str();
+    app->add_option("--size", o->size, "picture side in pixels (0: the resolution)")
+        ->check(CLI::Range(0, 4096))->capture_default_str();
+    app->add_option("--views", o->views, "views around the mesh")->check(CLI::Range(1, 8))->capture_default_str();
+    app->add_option("--reference-side", o->reference_side, "the reference's samples a pixel: side x side, stratified")
+        ->check(CLI::Range(1, 64))->capture_default_str();
+    app->add_option("--threads", o->threads, "threads of the precompute and the walk")
+        ->check(CLI::Range(1u, 256u))->capture_default_str();
+    app->add_option("--json", o->json, "write one JSON line per method, view and light after a header line");
+    app->add_option("--images", o->images,
+                    "write each view's strip (reference | averages | sggx | six | ours) here as PNG");
+    return {app, [o] { return appearance_bench(*o); }};
+}
+
+}  // namespace voxray::tool
