@@ -57,8 +57,8 @@ def table(header, rows, agreement):
         groups.setdefault((r["scene"], r["resolution"]), {}).setdefault(r["method"], []).append(r)
     out = ["| scene | voxels | method | MSE | MSE foreground | SSIM | bytes a voxel "
            "| precompute µs a voxel (%d threads) "
-           "| walk fps (%d²×4 rays) | visits a ray | targets (ours vs averages) |"
-           % (rows[0]["precompute_threads"], rows[0]["size"]),
+           "| walk fps (N² pixels × 4 rays at N³, %d threads) | visits a ray | targets (ours vs averages) |"
+           % (rows[0]["precompute_threads"], rows[0]["walk_threads"]),
            "|---|---:|---|---:|---:|---:|---:|---:|---:|---:|---|"]
     missed = 0
     for (scene, res), methods in sorted(groups.items(), key=lambda g: (g[0][1], g[0][0])):
