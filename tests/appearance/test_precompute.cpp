@@ -109,7 +109,7 @@ TEST(appearance_precompute, six_directions_of_a_box_lit_from_above) {
     embree::triangle_scene scene(box, identity_grid());
     appearance_table t = appearance::precompute(
         scene, box, v,
-        {.kind = appearance::record_kind::six, .sampling = {.rays = 600}, .light = {{0, 0, 1}, 0.25f}, .threads = 2});
+        {.kind = appearance::record_kind::six, .sampling = {.rays = 600}, .threads = 2, .light = {{0, 0, 1}, 0.25f}});
     ASSERT_EQ(t.record_words, VX_APP_SIX_WORDS);
     auto r = t.record(0);
     for (int d = 0; d < 6; ++d) EXPECT_EQ(VX_APP_AVG_OPACITY(r[d]), 255u) << d;

@@ -27,8 +27,10 @@
 #include "appearance_reference.hpp"
 #include "voxray/appearance/precompute.hpp"
 #include "voxray/cpu/appearance_walk.hpp"
+#include "voxray/brickmap/brickmap.hpp"
 #include "voxray/dense_grid/dense_grid.hpp"
 #include "voxray/embree/triangle_scene.hpp"
+#include "voxray/naadf/naadf.hpp"
 #include "voxray/gltf/coloured_mesh.hpp"
 #endif
 
@@ -43,8 +45,11 @@ struct appearance_bench_options {
     int views = 3;
     int reference_side = 16;  // 16 x 16 = 256 samples a pixel (the paper: 1024)
     unsigned threads = 2;
+    std::string structure = "dense";  // whose first-hit kernel the walk re-enters
     std::string json, images;
 };
+
+const std::vector<std::string> walk_structures = {"dense", "brickmap", "naadf"};
 
 #if VOXRAY_WITH_EMBREE
 
@@ -104,7 +109,7 @@ method_table precompute_method(const embree::triangle_scene& scene, const io::tr
     method_table m{name, {}, {}};
     m.table = appearance::precompute(
         scene, mesh, model,
-        {.kind = kind, .sampling = {}, .light = {light.to_light, light.ambient}, .threads = threads}, &m.stats);
+        {.kind = kind, .sampling = {}, .threads = threads, .light = {light.to_light, light.ambient}}, &m.stats);
     return m;
 }
 
@@ -113,13 +118,35 @@ struct walked_picture {
     double seconds = 0, steps = 0, visits = 0;  // steps and visits: means a ray
 };
 
+// The structure the walk traces: its name and its words.
+struct walk_structure {
+    std::string name;
+    std::vector<std::uint32_t> blob;
+};
+
+walk_structure build_structure(const std::string& name, const voxel_model& model) {
+    auto words = [](std::span<const std::uint32_t> b) { return std::vector<std::uint32_t>(b.begin(), b.end()); };
+    if (name == "brickmap") return {name, words(brickmap<>(model).blob())};
+    if (name == "naadf") return {name, words(naadf(model).blob())};
+    return {name, words(dense_grid(model).blob())};
+}
+
+template <class Kernel>
+std::vector<appearance_pixel> walk_rays(const std::vector<std::uint32_t>& blob, const method_table& m,
+                                        const std::vector<ray>& rays, const shading& light, unsigned threads) {
+    return appearance_walker<Kernel>(blob, m.table, threads)
+        .walk(rays, {.to_light = light.to_light, .ambient = light.ambient});
+}
+
 // Four rays a pixel (`rays`, pixel by pixel), blended over the background.
-walked_picture walk_picture(const std::vector<std::uint32_t>& blob, const method_table& m, const std::vector<ray>& rays,
+walked_picture walk_picture(const walk_structure& s, const method_table& m, const std::vector<ray>& rays,
                             const shading& light, int size, unsigned threads) {
-    appearance_walker<kernels::dense_grid_kernel> walker(blob, m.table, threads);
     walked_picture w;
     auto start = std::chrono::steady_clock::now();
-    std::vector<appearance_pixel> px = walker.walk(rays, {.to_light = light.to_light, .ambient = light.ambient});
+    std::vector<appearance_pixel> px =
+        s.name == "naadf"      ? walk_rays<kernels::naadf_kernel>(s.blob, m, rays, light, threads)
+        : s.name == "brickmap" ? walk_rays<kernels::brickmap_kernel>(s.blob, m, rays, light, threads)
+                               : walk_rays<kernels::dense_grid_kernel>(s.blob, m, rays, light, threads);
     w.seconds = seconds_since(start);
     w.picture = {size, size, std::vector<glm::vec3>(std::size_t(size) * std::size_t(size), glm::vec3(0.0f)), {}};
     for (std::size_t i = 0; i < px.size(); ++i) {
@@ -159,8 +186,7 @@ int appearance_bench(const appearance_bench_options& o) {
     std::string scene_name = folder + "/" + mesh_path.filename().string();
     std::fprintf(stderr, "%s at %d: %llu voxels\n", scene_name.c_str(), o.resolution,
                  (unsigned long long)model.voxel_count());
-    dense_grid grid(model);
-    std::vector<std::uint32_t> blob(grid.blob().begin(), grid.blob().end());
+    walk_structure structure = build_structure(o.structure, model);
 
     // Averages, SGGX and ours do not depend on the light; six directions is made for each.
     method_table averages = precompute_method(scene, mesh, model, "averages", appearance::record_kind::averages, {},
@@ -189,7 +215,7 @@ int appearance_bench(const appearance_bench_options& o) {
                 precompute_method(scene, mesh, model, "six", appearance::record_kind::six, lights[l], o.threads);
             for (const method_table* method : {&averages, &sggx, &six, &ours}) {  // the strip's order
                 const method_table& m = *method;
-                walked_picture w = walk_picture(blob, m, rays, lights[l], size, o.threads);
+                walked_picture w = walk_picture(structure, m, rays, lights[l], size, o.threads);
                 std::vector<std::uint8_t> got8 = srgb8(w.picture);
                 picture_errors e = compare(ref8, got8, reference[l].coverage, size, size);
                 std::printf("%-24s %4d %4d %-6s %-9s %9.5f %9.5f %7.2f %7.4f %7.1f %9.1f %9.2f\n", scene_name.c_str(),
@@ -208,6 +234,7 @@ int appearance_bench(const appearance_bench_options& o) {
                                                     {"reference_spp", o.reference_side * o.reference_side},
                                                     {"rays_per_pixel", 4}, {"walk_seconds", w.seconds},
                                                     {"walk_fps", 1.0 / w.seconds}, {"walk_threads", o.threads},
+                                                    {"walk_structure", structure.name},
                                                     {"steps_per_ray", w.steps}, {"visits_per_ray", w.visits}}
                                          .dump()
                                   << "\n";
@@ -248,6 +275,9 @@ command add_appearance_bench(CLI::App& parent) {
         ->check(CLI::Range(1, 64))->capture_default_str();
     app->add_option("--threads", o->threads, "threads of the precompute and the walk")
         ->check(CLI::Range(1u, 256u))->capture_default_str();
+    app->add_option("--structure", o->structure, "the structure whose first-hit kernel the walk re-enters")
+        ->check(CLI::IsMember(walk_structures))
+        ->capture_default_str();
     app->add_option("--json", o->json, "write one JSON line per method, view and light after a header line");
     app->add_option("--images", o->images,
                     "write each view's strip (reference | averages | sggx | six | ours) here as PNG");

@@ -46,7 +46,8 @@ std::vector<linear_picture> reference_pictures(const Scene& scene, const io::tri
                                                unsigned threads) {
     camera_frame frame(cam, width, height);
     const std::size_t pixels = std::size_t(width) * std::size_t(height);
-    std::vector<linear_picture> out(lights.size(), {width, height, std::vector<glm::vec3>(pixels, glm::vec3(0.0f)), {}});
+    linear_picture blank{width, height, std::vector<glm::vec3>(pixels, glm::vec3(0.0f)), {}};
+    std::vector<linear_picture> out(lights.size(), blank);
     std::vector<float> coverage(pixels, 0.0f);
     const unsigned count = resolve_build_threads(threads, std::size_t(height));
     run_build_threads(count, [&](unsigned t) {  // rows t, t + count, ...

@@ -25,10 +25,10 @@ namespace voxray::appearance {
 
 struct precompute_options {
     record_kind kind = record_kind::averages;
-    sampling_options sampling;
-    directional_light light;      // six: the light its colours are lit by
+    sampling_options sampling{};
     unsigned opacity_strata = 2;  // compact: n x n parallel rays a face, per opacity direction
     unsigned threads = 0;         // 0: every hardware thread
+    directional_light light{};    // six: the light its colours are lit by
 };
 
 struct precompute_stats {

@@ -145,6 +145,19 @@ VX_FN vx_app_sample vx_app_compact_sample(VX_BLOB record, VX_BLOB faces, float d
     return got;
 }
 
+/* The colour of word w0 (r, g, b in its low three bytes) shaded with normal n turned to the
+ * viewer (a record with one normal cannot tell front from back); a = 0. */
+VX_FN vx_app_sample vx_app_lit_word(uint w0, vx_app_vec n, float dx, float dy, float dz, vx_app_light light) {
+    if (vx_app_dot(n, dx, dy, dz) > 0.0f) n.x = -n.x, n.y = -n.y, n.z = -n.z;
+    float shade = vx_app_shade(n, light);
+    vx_app_sample got;
+    got.r = shade * vx_app_linear8(VX_APP_AVG_R(w0));
+    got.g = shade * vx_app_linear8(VX_APP_AVG_G(w0));
+    got.b = shade * vx_app_linear8(VX_APP_AVG_B(w0));
+    got.a = 0.0f;
+    return got;
+}
+
 /* The six directions record along a ray: the words of the three axis directions the ray
  * travels along, weighted by the squares of its direction's parts (they sum to 1). Lit
  * when it was made: no light here. */
@@ -194,29 +207,17 @@ VX_FN vx_app_sample vx_app_sggx_sample(VX_BLOB record, float dx, float dy, float
     vx_app_vec n;
     n.x = 0.0f, n.y = 0.0f, n.z = 0.0f;
     if (length > 0.0f) n.x = m.x / length, n.y = m.y / length, n.z = m.z / length;
-    if (vx_app_dot(n, dx, dy, dz) > 0.0f) n.x = -n.x, n.y = -n.y, n.z = -n.z;
-    float shade = vx_app_shade(n, light);
-    vx_app_sample got;
-    got.r = shade * vx_app_linear8(VX_APP_AVG_R(w0));
-    got.g = shade * vx_app_linear8(VX_APP_AVG_G(w0));
-    got.b = shade * vx_app_linear8(VX_APP_AVG_B(w0));
+    vx_app_sample got = vx_app_lit_word(w0, n, dx, dy, dz, light);
     got.a = 1.0f - t;
     return got;
 }
 
-/* The averages record along a ray: its colour shaded with its one normal, its one opacity.
- * A normal turned away from the viewer is shaded as seen, turned towards it (the record
- * cannot tell front from back). */
+/* The averages record along a ray: its colour shaded with its one normal, its one opacity. */
 VX_FN vx_app_sample vx_app_averages_sample(VX_BLOB record, float dx, float dy, float dz, vx_app_light light) {
     uint w0 = vx_load(record, 0u), w1 = vx_load(record, 1u);
     vx_app_vec n = vx_app_octahedral(vx_app_snorm(VX_APP_AVG_NORMAL_U(w1), 16u),
                                      vx_app_snorm(VX_APP_AVG_NORMAL_V(w1), 16u));
-    if (vx_app_dot(n, dx, dy, dz) > 0.0f) n.x = -n.x, n.y = -n.y, n.z = -n.z;
-    float shade = vx_app_shade(n, light);
-    vx_app_sample got;
-    got.r = shade * vx_app_linear8(VX_APP_AVG_R(w0));
-    got.g = shade * vx_app_linear8(VX_APP_AVG_G(w0));
-    got.b = shade * vx_app_linear8(VX_APP_AVG_B(w0));
+    vx_app_sample got = vx_app_lit_word(w0, n, dx, dy, dz, light);
     got.a = vx_u2f(VX_APP_AVG_OPACITY(w0)) * (1.0f / 255.0f);
     return got;
 }
