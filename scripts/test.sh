@@ -9,7 +9,7 @@
 #   ASan + UBSan   one build with every backend and one ctest over every CPU label (cpu,
 #                  io, mesh, meshing, appearance, malformed, brickmap, naadf, svdag, world, entities, sync, conformance,
 #                  nanovdb) and every test labelled opencl or vulkan (the backend tests,
-#                  both GPU conformance groups, the every-backend tests of sync, brickmap,
+#                  both GPU conformance groups (without their three largest agreement tests), the every-backend tests of sync, brickmap,
 #                  svdag and world).
 # LeakSanitizer reads scripts/lsan.supp: proven driver leaks only, by library name.
 # BUILD_DIR (default build/) names the main build; TSAN_DIR and ASAN_DIR the others

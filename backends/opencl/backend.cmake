@@ -56,6 +56,12 @@ function(voxray_opencl_finish)
     voxray_opencl_check(mesher ${mesher_cl} mesher_checked)
     set(includes "")
     set(rows "")
+    set(walk_rows "")
+    get_property(with_walk GLOBAL PROPERTY VOXRAY_APPEARANCE_KERNELS)
+    foreach(name ${with_walk})
+        string(APPEND includes "#include \"voxray/generated/opencl_${name}_appearance.hpp\"\n")
+        string(APPEND walk_rows "    {\"${name}_appearance\", voxray_opencl_${name}_appearance},\n")
+    endforeach()
     foreach(name ${ARGN})
         string(APPEND includes "#include \"voxray/generated/opencl_${name}.hpp\"\n")
         get_property(staged GLOBAL PROPERTY VOXRAY_KERNEL_STAGED_${name})
@@ -76,6 +82,9 @@ namespace voxray::opencl_detail {
 
 inline constexpr program_source registered_programs[] = {
 @rows@};
+// The compositing walk over each structure (voxray_add_appearance_walk), as <name>_appearance.
+inline constexpr program_source appearance_programs[] = {
+@walk_rows@};
 inline constexpr program_source commit_program{\"commit\", voxray_opencl_commit};
 inline constexpr program_source mesher_program{\"mesher\", voxray_opencl_mesher};
 

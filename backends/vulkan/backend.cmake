@@ -61,6 +61,16 @@ function(voxray_vulkan_add_program name)
     endif()
 endfunction()
 
+# The compositing walk over structure `name` (voxray_add_appearance_walk): one module,
+# <name>_appearance, from the dialect `files` and shaders/appearance_entry.glsl.
+function(voxray_vulkan_add_walk name files)
+    set(dir ${CMAKE_CURRENT_FUNCTION_LIST_DIR})
+    set(comp ${VOXRAY_GENERATED}/vulkan/${name}_appearance.comp)
+    voxray_flatten(OUTPUT ${comp} LINE_MARKERS FILES ${dir}/shaders/preamble.glsl ${dir}/shaders/dialect.glsl ${files}
+        ${dir}/shaders/appearance_entry.glsl)
+    voxray_vulkan_compile(${comp} ${name}_appearance "")
+endfunction()
+
 # The commit shader and the table of every module by name.
 function(voxray_vulkan_finish)
     set(dir ${CMAKE_CURRENT_FUNCTION_LIST_DIR})
@@ -90,14 +100,20 @@ function(voxray_vulkan_finish)
     set(includes "")
     set(rows "")
     get_property(with_passes GLOBAL PROPERTY VOXRAY_VULKAN_PASSES)
+    get_property(with_walk GLOBAL PROPERTY VOXRAY_APPEARANCE_KERNELS)
     foreach(name ${ARGN})
         string(APPEND includes "#include \"voxray/generated/spirv_${name}_trace.hpp\"\n")
-        set(passes "")
+        set(passes "{}")
         if(name IN_LIST with_passes)
             string(APPEND includes "#include \"voxray/generated/spirv_${name}_passes.hpp\"\n")
-            set(passes ", voxray_spirv_${name}_passes")
+            set(passes "voxray_spirv_${name}_passes")
         endif()
-        string(APPEND rows "    {\"${name}\", voxray_spirv_${name}_trace${passes}},\n")
+        set(walk "{}")
+        if(name IN_LIST with_walk)
+            string(APPEND includes "#include \"voxray/generated/spirv_${name}_appearance.hpp\"\n")
+            set(walk "voxray_spirv_${name}_appearance")
+        endif()
+        string(APPEND rows "    {\"${name}\", voxray_spirv_${name}_trace, ${passes}, ${walk}},\n")
     endforeach()
     file(CONFIGURE OUTPUT ${VOXRAY_GENERATED}/voxray/generated/vulkan_modules.hpp CONTENT
 "// Generated from the voxray_add_structure calls (backends/vulkan/backend.cmake): do not edit.

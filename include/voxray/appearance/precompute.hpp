@@ -38,16 +38,6 @@ struct precompute_stats {
     double us_per_voxel() const { return voxels ? seconds * 1e6 / double(voxels) : 0; }
 };
 
-inline int record_words(record_kind k) {
-    switch (k) {
-    case record_kind::averages: return VX_APP_AVERAGES_WORDS;
-    case record_kind::compact: return VX_APP_COMPACT_WORDS;
-    case record_kind::six: return VX_APP_SIX_WORDS;
-    case record_kind::sggx: return VX_APP_SGGX_WORDS;
-    }
-    fail("appearance precompute: unknown record kind ", int(k));
-}
-
 // Opacity rays a voxel: each of the 13 directions enters through 1, 2 or 3 faces.
 inline std::uint64_t opacity_rays_per_voxel(unsigned strata) { return 27ull * strata * strata; }
 
@@ -55,12 +45,14 @@ template <class Scene>
 appearance_table precompute(const Scene& scene, const io::triangle_mesh& mesh, const voxel_model& model,
                             const precompute_options& o = {}, precompute_stats* stats = nullptr) {
     if (o.sampling.rays == 0) fail("appearance precompute: 0 sampling rays a voxel");
+    mesh.validate();  // a mesh built by hand may hold what the readers refuse (a NaN vertex)
     const bool compact = o.kind == record_kind::compact;
     if (compact && o.opacity_strata == 0) fail("appearance precompute: 0 opacity strata");
     auto start = std::chrono::steady_clock::now();
     appearance_table t;
     t.kind = o.kind;
     t.record_words = record_words(o.kind);
+    if (t.record_words == 0) fail("appearance precompute: unknown record kind ", int(o.kind));
     model.for_each_voxel([&](glm::ivec3 p, std::uint8_t) { t.voxels.push_back(p); });
     std::sort(t.voxels.begin(), t.voxels.end(), ordinal_less);
     t.words.assign(t.voxels.size() * std::size_t(t.record_words), 0);

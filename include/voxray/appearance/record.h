@@ -10,6 +10,11 @@
  * was chosen for. Included once per lane set; no include guard on purpose. */
 #include "voxray/appearance/layout.h"
 
+/* Every function of the records and the walk returns `precise` results on GLSL: a * b + c
+ * stays two roundings there, as in C++ (-ffp-contract=off) and OpenCL (FP_CONTRACT OFF),
+ * which keeps the backends' pixels bit-identical. */
+#define VX_APP_FN VX_FN VX_PRECISE
+
 VX_STRUCT(vx_app_light)
     float lx, ly, lz;  /* unit direction towards the light */
     float ambient;     /* 0..1 */
@@ -21,12 +26,12 @@ VX_STRUCT(vx_app_sample)
 VX_END_STRUCT(vx_app_sample)
 
 /* An 8-bit sRGB code to linear 0..1 (layout.h). */
-VX_FN float vx_app_linear8(uint code) {
+VX_APP_FN float vx_app_linear8(uint code) {
     float x = vx_u2f(code) * (1.0f / 255.0f);
     return VX_APP_SRGB_CUBIC(x);
 }
 
-VX_FN float vx_app_snorm(uint bits, uint width) {
+VX_APP_FN float vx_app_snorm(uint bits, uint width) {
     uint sign_bit = 1u << (width - 1u);
     int v = vx_u2i(bits) - vx_u2i((bits & sign_bit) << 1u);
     return vx_fmax(vx_i2f(v) / vx_u2f(sign_bit - 1u), -1.0f);
@@ -37,7 +42,7 @@ VX_STRUCT(vx_app_vec)
     float x, y, z;
 VX_END_STRUCT(vx_app_vec)
 
-VX_FN vx_app_vec vx_app_octahedral(float u, float v) {
+VX_APP_FN vx_app_vec vx_app_octahedral(float u, float v) {
     vx_app_vec n;
     float au = u < 0.0f ? -u : u, av = v < 0.0f ? -v : v;
     n.z = 1.0f - au - av;
@@ -48,14 +53,14 @@ VX_FN vx_app_vec vx_app_octahedral(float u, float v) {
     return n;
 }
 
-VX_FN float vx_app_dot(vx_app_vec a, float x, float y, float z) { return a.x * x + a.y * y + a.z * z; }
+VX_APP_FN float vx_app_dot(vx_app_vec a, float x, float y, float z) { return a.x * x + a.y * y + a.z * z; }
 
 /* Opacity along unit ray direction (dx, dy, dz) from head words 1 and 2: the 13 measured
  * directions blended, each weighted by how much closer than 45 degrees it is to the ray.
  * Every direction has measured ones in reach, and an axis reads exactly its own value. (A
  * narrower reach, 35.26 degrees, would read every measured direction exactly but blends
  * worse between them: on a plane, RMS error 0.07 against 0.025 over the sphere.) */
-VX_FN float vx_app_opacity(uint h1, uint h2, float dx, float dy, float dz) {
+VX_APP_FN float vx_app_opacity(uint h1, uint h2, float dx, float dy, float dz) {
     /* Blended as offsets from direction 0's value, so that equal values (a full voxel, an
      * empty one) read back exactly. */
     float base = vx_u2f(VX_APP_OPACITY_Q(h1, h2, 0u)), offsets = 0.0f, weights = 0.0f;
@@ -71,14 +76,14 @@ VX_FN float vx_app_opacity(uint h1, uint h2, float dx, float dy, float dz) {
 }
 
 /* Lambert with ambient for normal n. */
-VX_FN float vx_app_shade(vx_app_vec n, vx_app_light light) {
+VX_APP_FN float vx_app_shade(vx_app_vec n, vx_app_light light) {
     return light.ambient + (1.0f - light.ambient) * vx_fmax(vx_app_dot(n, light.lx, light.ly, light.lz), 0.0f);
 }
 
 /* Quadrature node q (0..3) of a face: its mean normal (q = 0), or one of three normals on a
  * ring around it, 120 degrees apart, `spread` (the ring's tangent) away. The ring's frame
  * comes from the normal alone (Duff et al.'s branchless basis), so every backend gets it. */
-VX_FN vx_app_vec vx_app_face_node(vx_app_vec n, float spread, uint q) {
+VX_APP_FN vx_app_vec vx_app_face_node(vx_app_vec n, float spread, uint q) {
     float sign = n.z < 0.0f ? -1.0f : 1.0f;
     float a = -1.0f / (sign + n.z), b = n.x * n.y * a;
     vx_app_vec t, s;
@@ -100,8 +105,8 @@ VX_FN vx_app_vec vx_app_face_node(vx_app_vec n, float spread, uint q) {
  * node weighted by the area it turns to the viewer, max(0, -n . d), and the face by its share
  * of the surface; side -1 takes the normals turned round (the faces seen from behind). Returns
  * the weighted colour sum in r, g, b and the sum of the weights in a. */
-VX_FN vx_app_sample vx_app_compact_faces(VX_BLOB faces, uint first, uint count, float dx, float dy, float dz,
-                                         vx_app_light light, float side) {
+VX_APP_FN vx_app_sample vx_app_compact_faces(VX_BLOB faces, uint first, uint count, float dx, float dy, float dz,
+                                             vx_app_light light, float side) {
     vx_app_sample sum;
     sum.r = 0.0f, sum.g = 0.0f, sum.b = 0.0f, sum.a = 0.0f;
     for (uint f = 0u; f < count; ++f) {
@@ -133,8 +138,8 @@ VX_FN vx_app_sample vx_app_compact_faces(VX_BLOB faces, uint first, uint count, 
  * away shows them turned round: it is met only where coverage leaked past the surface in
  * front of it (a closed surface seen from outside has no back to show), and there the
  * front's colour is the better guess than black. `faces` is the face pool. */
-VX_FN vx_app_sample vx_app_compact_sample(VX_BLOB record, VX_BLOB faces, float dx, float dy, float dz,
-                                          vx_app_light light) {
+VX_APP_FN vx_app_sample vx_app_compact_sample(VX_BLOB record, VX_BLOB faces, float dx, float dy, float dz,
+                                              vx_app_light light) {
     uint h0 = vx_load(record, 0u), h1 = vx_load(record, 1u), h2 = vx_load(record, 2u);
     uint first = VX_APP_FIRST_FACE(h0), count = VX_APP_FACES(h1);
     vx_app_sample got = vx_app_compact_faces(faces, first, count, dx, dy, dz, light, 1.0f);
@@ -147,7 +152,7 @@ VX_FN vx_app_sample vx_app_compact_sample(VX_BLOB record, VX_BLOB faces, float d
 
 /* The colour of word w0 (r, g, b in its low three bytes) shaded with normal n turned to the
  * viewer (a record with one normal cannot tell front from back); a = 0. */
-VX_FN vx_app_sample vx_app_lit_word(uint w0, vx_app_vec n, float dx, float dy, float dz, vx_app_light light) {
+VX_APP_FN vx_app_sample vx_app_lit_word(uint w0, vx_app_vec n, float dx, float dy, float dz, vx_app_light light) {
     if (vx_app_dot(n, dx, dy, dz) > 0.0f) n.x = -n.x, n.y = -n.y, n.z = -n.z;
     float shade = vx_app_shade(n, light);
     vx_app_sample got;
@@ -161,7 +166,7 @@ VX_FN vx_app_sample vx_app_lit_word(uint w0, vx_app_vec n, float dx, float dy, f
 /* The six directions record along a ray: the words of the three axis directions the ray
  * travels along, weighted by the squares of its direction's parts (they sum to 1). Lit
  * when it was made: no light here. */
-VX_FN vx_app_sample vx_app_six_sample(VX_BLOB record, float dx, float dy, float dz) {
+VX_APP_FN vx_app_sample vx_app_six_sample(VX_BLOB record, float dx, float dy, float dz) {
     vx_app_sample got;
     got.r = 0.0f, got.g = 0.0f, got.b = 0.0f, got.a = 0.0f;
     for (uint axis = 0u; axis < 3u; ++axis) {
@@ -178,7 +183,7 @@ VX_FN vx_app_sample vx_app_six_sample(VX_BLOB record, float dx, float dy, float 
 
 /* exp(-t) for t >= 0 as 1 / (1 + t / 1024)^1024: ten squarings, the same on every backend
  * (within 1 % of exp for t <= 5, where it matters). */
-VX_FN float vx_app_exp_neg(float t) {
+VX_APP_FN float vx_app_exp_neg(float t) {
     float y = 1.0f + t * (1.0f / 1024.0f);
     for (uint i = 0u; i < 10u; ++i) y = y * y;
     return 1.0f / y;
@@ -188,7 +193,7 @@ VX_FN float vx_app_exp_neg(float t) {
  * optical depth rho sqrt(d^T S d) / (|dx| + |dy| + |dz|); its mean colour shaded at S d, the
  * normal that the projected area leans to (the plane's normal for a plane, the view
  * direction for a sphere), turned to the viewer. */
-VX_FN vx_app_sample vx_app_sggx_sample(VX_BLOB record, float dx, float dy, float dz, vx_app_light light) {
+VX_APP_FN vx_app_sample vx_app_sggx_sample(VX_BLOB record, float dx, float dy, float dz, vx_app_light light) {
     uint w0 = vx_load(record, 0u), w1 = vx_load(record, 1u), w2 = vx_load(record, 2u);
     float sx = vx_u2f(w1 & 255u) * (1.0f / 255.0f), sy = vx_u2f((w1 >> 8) & 255u) * (1.0f / 255.0f);
     float sz = vx_u2f((w1 >> 16) & 255u) * (1.0f / 255.0f);
@@ -213,7 +218,7 @@ VX_FN vx_app_sample vx_app_sggx_sample(VX_BLOB record, float dx, float dy, float
 }
 
 /* The averages record along a ray: its colour shaded with its one normal, its one opacity. */
-VX_FN vx_app_sample vx_app_averages_sample(VX_BLOB record, float dx, float dy, float dz, vx_app_light light) {
+VX_APP_FN vx_app_sample vx_app_averages_sample(VX_BLOB record, float dx, float dy, float dz, vx_app_light light) {
     uint w0 = vx_load(record, 0u), w1 = vx_load(record, 1u);
     vx_app_vec n = vx_app_octahedral(vx_app_snorm(VX_APP_AVG_NORMAL_U(w1), 16u),
                                      vx_app_snorm(VX_APP_AVG_NORMAL_V(w1), 16u));

@@ -13,6 +13,8 @@
 
 #include <glm/vec3.hpp>
 
+#include "voxray/appearance/layout.h"
+
 namespace voxray::appearance {
 
 // The table's row order, the ordinal index's (appearance/ordinal.h): bricks of 4^3 voxels in
@@ -35,6 +37,17 @@ inline const char* record_name(record_kind k) {
     case record_kind::sggx: return "sggx";
     }
     return "unknown";
+}
+
+// Words a record of kind `k` takes (layout.h); 0 for a value outside the enum (a file's).
+inline int record_words(record_kind k) {
+    switch (k) {
+    case record_kind::averages: return VX_APP_AVERAGES_WORDS;
+    case record_kind::compact: return VX_APP_COMPACT_WORDS;
+    case record_kind::six: return VX_APP_SIX_WORDS;
+    case record_kind::sggx: return VX_APP_SGGX_WORDS;
+    }
+    return 0;
 }
 
 struct appearance_table {

@@ -1,12 +1,8 @@
-/* What the compositing walk (walk.inc) returns, and the helpers it shares across
- * structures: a voxel's exit along a ray, and a record's sample by kind. Needs prelude.h,
- * kernels/ray.h, record.h and ordinal.h. Included once per lane set; no include guard. */
-#define VX_APP_KIND_AVERAGES 0u
-#define VX_APP_KIND_COMPACT 1u
-#define VX_APP_KIND_SIX 2u
-#define VX_APP_KIND_SGGX 3u
-/* The walk met a voxel the ordinal index does not know: the table is not this structure's. */
-#define VX_APP_WALK_NO_RECORD 3u
+/* What the compositing walk (walk.inc) returns (its layout: pixel_layout.h), and the
+ * helpers it shares across structures: a voxel's exit along a ray, and a record's sample
+ * by kind. Needs prelude.h, kernels/ray.h, record.h and ordinal.h. Included once per lane
+ * set; no include guard. */
+#include "voxray/appearance/pixel_layout.h"
 
 VX_STRUCT(vx_app_walk_result)
     float r, g, b;        /* linear colour blended front to back */
@@ -14,30 +10,32 @@ VX_STRUCT(vx_app_walk_result)
     float t;              /* the first voxel's entry t */
     int x, y, z;          /* the first voxel */
     uint face;            /* the face the first voxel was entered through */
+    uint material;        /* the first voxel's palette index */
     uint visits;          /* voxels blended */
     uint steps;           /* the structure kernel's steps, over every re-entry */
     uint status;          /* VX_STATUS_HIT or _MISS for the first voxel, or VX_APP_WALK_NO_RECORD */
 VX_END_STRUCT(vx_app_walk_result)
 
-VX_FN vx_app_walk_result vx_app_walk_start(void) {
+VX_APP_FN vx_app_walk_result vx_app_walk_start(void) {
     vx_app_walk_result w;
     w.r = 0.0f, w.g = 0.0f, w.b = 0.0f, w.transmittance = 1.0f, w.t = VX_INF;
-    w.x = 0, w.y = 0, w.z = 0, w.face = 0u, w.visits = 0u, w.steps = 0u, w.status = VX_STATUS_MISS;
+    w.x = 0, w.y = 0, w.z = 0, w.face = VX_FACE_NONE, w.material = 0u;
+    w.visits = 0u, w.steps = 0u, w.status = VX_STATUS_MISS;
     return w;
 }
 
 /* t at which ray r leaves voxel (x, y, z): the nearest far plane of the moving axes. */
-VX_FN float vx_app_exit_axis(float o, float d, int c) {
+VX_APP_FN float vx_app_exit_axis(float o, float d, int c) {
     return d > 0.0f ? (vx_i2f(c + 1) - o) / d : (d < 0.0f ? (vx_i2f(c) - o) / d : VX_INF);
 }
-VX_FN float vx_app_voxel_exit(vx_ray r, int x, int y, int z) {
+VX_APP_FN float vx_app_voxel_exit(vx_ray r, int x, int y, int z) {
     return vx_fmin(vx_fmin(vx_app_exit_axis(r.ox, r.dx, x), vx_app_exit_axis(r.oy, r.dy, y)),
                    vx_app_exit_axis(r.oz, r.dz, z));
 }
 
 /* Row `row` of a table of `kind` records, along unit direction (dx, dy, dz). */
-VX_FN vx_app_sample vx_app_record_sample(VX_BLOB records, VX_BLOB faces, uint kind, uint row, float dx, float dy,
-                                         float dz, vx_app_light light) {
+VX_APP_FN vx_app_sample vx_app_record_sample(VX_BLOB records, VX_BLOB faces, uint kind, uint row, float dx, float dy,
+                                             float dz, vx_app_light light) {
     if (kind == VX_APP_KIND_AVERAGES)
         return vx_app_averages_sample(vx_blob_at(records, row * VX_APP_AVERAGES_WORDS), dx, dy, dz, light);
     if (kind == VX_APP_KIND_SIX) return vx_app_six_sample(vx_blob_at(records, row * VX_APP_SIX_WORDS), dx, dy, dz);

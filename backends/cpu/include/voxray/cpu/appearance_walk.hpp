@@ -5,6 +5,7 @@
 //   voxray::appearance_walker<voxray::kernels::dense_grid_kernel> walker(blob, table);
 //   std::vector<voxray::appearance_pixel> out = walker.walk(rays, light);
 #pragma once
+#include <bit>
 #include <cmath>
 #include <cstdint>
 #include <memory>
@@ -14,8 +15,7 @@
 #if !defined(VOXRAY_LINKED_CPU)
 #error "voxray/cpu/appearance_walk.hpp needs voxray::cpu (the scalar lanes the walk runs on): link it"
 #endif
-#include "voxray/appearance/ordinal_index.hpp"
-#include "voxray/appearance/table.hpp"
+#include "voxray/appearance/walk_inputs.hpp"
 #include "voxray/core/error.hpp"
 #include "voxray/core/ray.hpp"
 #include "voxray/cpu/appearance_kernels.hpp"
@@ -30,31 +30,20 @@ namespace voxray::kernels::scalar {
 
 namespace voxray {
 
-using appearance_pixel = kernels::scalar::vx_app_walk_result;
-
-struct appearance_light {
-    glm::vec3 to_light{0.0f, 1.0f, 0.0f};  // unit
-    float ambient = 0.2f;
-    float cutoff = 1e-3f;         // stop below this transmittance (the paper's)
-    std::uint32_t max_visits = 4096;
-};
-
 template <class Kernel>
 class appearance_walker {
 public:
+    static constexpr const char* backend = "cpu";
+
     // `blob` is the structure's words, `table` the appearance of its voxels (its rows in the
     // ordinal index's order); both are copied.
     appearance_walker(std::vector<std::uint32_t> blob, const appearance::appearance_table& table,
                       unsigned threads = 0)
-        : blob_(std::move(blob)), index_(appearance::ordinal_index(table)), records_(table.words),
-          faces_(table.faces), kind_(kind_of(table.kind)),
-          pool_(std::make_unique<cpu_detail::thread_pool>(threads)) {
-        if (faces_.empty()) faces_.push_back(0);  // a valid pointer for tables without faces
-        if (records_.empty()) records_.push_back(0);
-    }
+        : blob_(std::move(blob)), words_(table), pool_(std::make_unique<cpu_detail::thread_pool>(threads)) {}
 
     // Rays' directions must be unit vectors (records are evaluated for them).
     std::vector<appearance_pixel> walk(std::span<const ray> rays, const appearance_light& light) const {
+        static_assert(sizeof(kernels::scalar::vx_app_walk_result) == sizeof(appearance_pixel));
         std::vector<appearance_pixel> out(rays.size());
         kernels::scalar::vx_app_light l{light.to_light.x, light.to_light.y, light.to_light.z, light.ambient};
         constexpr std::size_t batch = 256;
@@ -63,31 +52,18 @@ public:
                 const ray& r = rays[i];
                 kernels::scalar::vx_ray lane{r.origin.x,    r.origin.y,    r.origin.z,    r.tmin,
                                              r.direction.x, r.direction.y, r.direction.z, r.tmax};
-                out[i] = kernels::scalar::vx_app_walk<Kernel>(blob_.data(), index_.data(), records_.data(),
-                                                              faces_.data(), kind_, lane, l, light.cutoff,
-                                                              light.max_visits);
+                out[i] = std::bit_cast<appearance_pixel>(kernels::scalar::vx_app_walk<Kernel>(
+                    blob_.data(), words_.index.data(), words_.records.data(), words_.faces.data(), words_.kind,
+                    lane, l, light.cutoff, light.max_visits));
             }
         });
-        for (const appearance_pixel& p : out)
-            if (p.status == VX_APP_WALK_NO_RECORD)
-                fail("appearance walk: voxel (", p.x, ", ", p.y, ", ", p.z,
-                     ") of the structure has no row in the appearance table (a table of other voxels?)");
+        appearance::check_walked(out);
         return out;
     }
 
 private:
-    static std::uint32_t kind_of(appearance::record_kind k) {
-        switch (k) {
-        case appearance::record_kind::averages: return VX_APP_KIND_AVERAGES;
-        case appearance::record_kind::compact: return VX_APP_KIND_COMPACT;
-        case appearance::record_kind::six: return VX_APP_KIND_SIX;
-        case appearance::record_kind::sggx: return VX_APP_KIND_SGGX;
-        }
-        fail("appearance walk: unknown record kind ", int(k));
-    }
-
-    std::vector<std::uint32_t> blob_, index_, records_, faces_;
-    std::uint32_t kind_;
+    std::vector<std::uint32_t> blob_;
+    appearance::walk_words words_;
     std::unique_ptr<cpu_detail::thread_pool> pool_;
 };
 

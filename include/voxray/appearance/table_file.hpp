@@ -1,0 +1,151 @@
+// Appearance table files (.vxap): a 48-byte header, then the rows' voxels, the records and
+// the face pool, little endian. A precompute takes minutes at 256^3; the file keeps it.
+//
+//   offset  size  field
+//        0     4  magic "VXAP" (0x50415856)
+//        4     4  file version (1)
+//        8     4  record kind (0 averages, 1 compact, 2 six, 3 sggx: table.hpp)
+//       12     4  record words (layout.h: must be the kind's)
+//       16     8  rows                           file size must be
+//       24     8  face pool words                48 + 12 rows + 4 (rows x record words + face words)
+//       32     8  checksum: FNV-1a 64 over bytes 0..31 and everything after byte 47
+//       40     8  zero (reserved)
+//       48        voxels: rows x (x, y, z) as int32, in the ordinal order (table.hpp)
+//                 records: rows x record words
+//                 face pool
+//
+// A load trusts nothing: sizes before anything is allocated, the checksum before the
+// content is read, then the content (table_check.hpp: order, face ranges), so a walk never
+// reads outside its buffers. Every failure is a voxray::error naming the file, the byte
+// offset and the value.
+#pragma once
+#include <bit>
+#include <cstdint>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <vector>
+
+#include "voxray/appearance/table.hpp"
+#include "voxray/appearance/table_check.hpp"
+#include "voxray/core/checksum.hpp"
+#include "voxray/core/error.hpp"
+
+namespace voxray::appearance {
+
+static_assert(std::endian::native == std::endian::little, "appearance table files assume a little-endian host");
+
+inline constexpr std::uint32_t table_file_magic = 0x50415856u;  // "VXAP"
+inline constexpr std::uint32_t table_file_version = 1;
+inline constexpr std::size_t table_file_header_bytes = 48;
+// Rows and face words a file may declare: far above any real table (2^28 rows is 512^3
+// full), low enough that the sizes cannot overflow.
+inline constexpr std::uint64_t table_file_max_rows = 1ull << 32;
+inline constexpr std::uint64_t table_file_max_face_words = 1ull << 34;
+
+namespace table_file_detail {
+
+inline std::vector<unsigned char> body(const appearance_table& t) {
+    std::vector<unsigned char> b(t.voxels.size() * 12 + 4 * (t.words.size() + t.faces.size()));
+    unsigned char* at = b.data();
+    for (glm::ivec3 v : t.voxels) {
+        std::int32_t xyz[3] = {v.x, v.y, v.z};
+        std::memcpy(at, xyz, 12);
+        at += 12;
+    }
+    if (!t.words.empty()) std::memcpy(at, t.words.data(), 4 * t.words.size());
+    at += 4 * t.words.size();
+    if (!t.faces.empty()) std::memcpy(at, t.faces.data(), 4 * t.faces.size());
+    return b;
+}
+
+inline std::uint64_t checksum(const unsigned char* header, const std::vector<unsigned char>& body) {
+    fnv64 sum;
+    sum.bytes(header, 32);
+    sum.bytes(body.data(), body.size());
+    return sum.h;
+}
+
+}  // namespace table_file_detail
+
+inline void save_table(const appearance_table& t, const std::filesystem::path& path) {
+    check_table(t, ("appearance table file " + path.string()).c_str());
+    std::vector<unsigned char> body = table_file_detail::body(t);
+    unsigned char h[table_file_header_bytes] = {};
+    auto put32 = [&](std::size_t at, std::uint32_t v) { std::memcpy(h + at, &v, 4); };
+    auto put64 = [&](std::size_t at, std::uint64_t v) { std::memcpy(h + at, &v, 8); };
+    put32(0, table_file_magic);
+    put32(4, table_file_version);
+    put32(8, std::uint32_t(t.kind));
+    put32(12, std::uint32_t(t.record_words));
+    put64(16, t.voxels.size());
+    put64(24, t.faces.size());
+    put64(32, table_file_detail::checksum(h, body));
+    std::ofstream out(path, std::ios::binary | std::ios::trunc);
+    if (!out) fail("appearance table file ", path.string(), ": cannot open for writing");
+    out.write(reinterpret_cast<const char*>(h), sizeof h);
+    out.write(reinterpret_cast<const char*>(body.data()), std::streamsize(body.size()));
+    if (!out) fail("appearance table file ", path.string(), ": write failed");
+}
+
+inline appearance_table load_table(const std::filesystem::path& path) {
+    std::string name = path.string();
+    std::error_code ec;
+    std::uint64_t size = std::filesystem::file_size(path, ec);
+    if (ec) fail("appearance table file ", name, ": cannot read (", ec.message(), ")");
+    auto bad = [&](std::uint64_t offset, auto... what) {
+        fail("appearance table file ", name, ": offset ", offset, ": ", what...);
+    };
+    if (size < table_file_header_bytes)
+        bad(0, "truncated: ", size, " bytes is shorter than the ", table_file_header_bytes, "-byte header");
+    std::ifstream in(path, std::ios::binary);
+    unsigned char h[table_file_header_bytes];
+    if (!in.read(reinterpret_cast<char*>(h), sizeof h))
+        fail("appearance table file ", name, ": cannot read the header");
+    auto get32 = [&](std::size_t at) { std::uint32_t v; std::memcpy(&v, h + at, 4); return v; };
+    auto get64 = [&](std::size_t at) { std::uint64_t v; std::memcpy(&v, h + at, 8); return v; };
+    if (get32(0) != table_file_magic) bad(0, "bad magic ", get32(0), " (expected ", table_file_magic, ")");
+    if (get32(4) != table_file_version)
+        bad(4, "unsupported version ", get32(4), " (this build reads version ", table_file_version, ")");
+    appearance_table t;
+    t.kind = record_kind(get32(8));
+    int words = record_words(t.kind);
+    if (words == 0) bad(8, "unknown record kind ", get32(8));
+    if (get32(12) != std::uint32_t(words))
+        bad(12, record_name(t.kind), " records take ", words, " words, the file says ", get32(12));
+    t.record_words = words;
+    std::uint64_t rows = get64(16), face_words = get64(24);
+    if (rows > table_file_max_rows) bad(16, rows, " rows, above the limit of ", table_file_max_rows);
+    if (face_words > table_file_max_face_words)
+        bad(24, face_words, " face words, above the limit of ", table_file_max_face_words);
+    std::uint64_t expected = table_file_header_bytes + 12 * rows + 4 * (rows * words + face_words);
+    if (size != expected)
+        bad(16, "file is ", size, " bytes; ", rows, " rows and ", face_words, " face words need ", expected);
+    std::vector<unsigned char> body(size - table_file_header_bytes);
+    if (!in.read(reinterpret_cast<char*>(body.data()), std::streamsize(body.size())))
+        fail("appearance table file ", name, ": read failed");
+    std::uint64_t sum = table_file_detail::checksum(h, body);
+    if (sum != get64(32)) bad(32, "checksum ", get64(32), " does not match the content's ", sum);
+    if (get64(40) != 0) bad(40, "reserved word is ", get64(40), ", not 0");
+    t.voxels.resize(rows);
+    const unsigned char* at = body.data();
+    for (glm::ivec3& v : t.voxels) {
+        std::int32_t xyz[3];
+        std::memcpy(xyz, at, 12);
+        v = {xyz[0], xyz[1], xyz[2]};
+        at += 12;
+    }
+    t.words.resize(rows * words);
+    if (!t.words.empty()) std::memcpy(t.words.data(), at, 4 * t.words.size());
+    at += 4 * t.words.size();
+    t.faces.resize(face_words);
+    if (!t.faces.empty()) std::memcpy(t.faces.data(), at, 4 * t.faces.size());
+    std::uint64_t records_at = table_file_header_bytes + 12 * rows;
+    check_table(t, [&](std::size_t row, auto... what) {
+        bad(records_at + 4 * row * words, "(row ", row, ") ", what...);
+    });
+    return t;
+}
+
+}  // namespace voxray::appearance
