@@ -2,7 +2,7 @@
 # Filtered voxel appearance against the triangles (issue 25): voxray appearance-bench on
 # shared meshes at 128^3 and 256^3 (pictures of 128^2 and 256^2, as in the paper), 3 views,
 # a light in front and one behind, 2 threads. Writes docs/bench/appearance_results.jsonl and
-# the strips (reference | averages | sggx | six | ours) into the build folder, then the table
+# the strips (reference | averages | sggx | six | faithful | ours) into the build folder, then the table
 # (docs/bench/appearance_table.md, also in docs/appearance.md) with every metric checked
 # against scikit-image's on the strips, and keeps view 0's strips in docs/bench/appearance/.
 # About 12 minutes on 2 shared cores.

@@ -3,7 +3,7 @@
 
 appearance_table.py RESULTS --strips FOLDER --out TABLE.md [--doc DOC.md]
   RESULTS    appearance-bench JSON lines (a header, then one row per method, view and light)
-  FOLDER     the strips the bench wrote (reference | averages | sggx | six | ours, side by side): MSE and
+  FOLDER     the strips the bench wrote (reference | averages | sggx | six | faithful | ours, side by side): MSE and
              SSIM are recomputed from them with scikit-image (structural_similarity with
              Wang's parameters: gaussian_weights, sigma 1.5, use_sample_covariance off,
              data_range 255, channel_axis) and must agree with the tool's
@@ -34,7 +34,7 @@ def strip_name(row):
 
 
 def check_with_skimage(rows, strips):
-    methods = sorted({r["method"] for r in rows}, key=["averages", "sggx", "six", "ours"].index)
+    methods = sorted({r["method"] for r in rows}, key=["averages", "sggx", "six", "faithful", "ours"].index)
     worst_mse = worst_ssim = 0.0
     for r in rows:
         image = imread(strips / strip_name(r))[..., :3]
@@ -65,7 +65,7 @@ def table(header, rows, agreement):
         mean = {m: {k: float(np.mean([r[k] for r in rs])) for k in
                     ("mse", "mse_foreground", "ssim", "bytes_per_voxel", "precompute_us_per_voxel", "walk_fps",
                      "visits_per_ray")} for m, rs in methods.items()}
-        for m in ("averages", "sggx", "six", "ours"):
+        for m in ("averages", "sggx", "six", "faithful", "ours"):
             if m not in mean:
                 continue
             verdict = ""

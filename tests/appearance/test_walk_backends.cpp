@@ -60,7 +60,8 @@ const walk_scene& kitchen() {
         s.model = io::voxelize(mesh, {.resolution = resolution, .threads = 2});
         embree::triangle_scene triangles(mesh, io::make_grid_map(mesh.bounds(), resolution));
         for (auto [name, kind] : {std::pair{"averages", record_kind::averages}, {"compact", record_kind::compact},
-                                  {"six", record_kind::six}, {"sggx", record_kind::sggx}})
+                                  {"six", record_kind::six}, {"sggx", record_kind::sggx},
+                                  {"faithful", record_kind::faithful}})
             s.tables.emplace_back(name, appearance::precompute(triangles, mesh, s.model, {.kind = kind, .threads = 2}));
         s.tables.emplace_back("opaque", test::uniform_table(s.model, 15));
         s.rays = test::camera_rays(s.model, 40);

@@ -192,10 +192,12 @@ int appearance_bench(const appearance_bench_options& o) {
                  (unsigned long long)model.voxel_count());
     walk_structure structure = build_structure(o.structure, model);
 
-    // Averages, SGGX and ours do not depend on the light; six directions is made for each.
+    // Averages, SGGX, faithful and ours do not depend on the light; six directions is made for each.
     method_table averages = precompute_method(scene, mesh, model, "averages", appearance::record_kind::averages, {},
                                               o.threads);
     method_table sggx = precompute_method(scene, mesh, model, "sggx", appearance::record_kind::sggx, {}, o.threads);
+    method_table faithful =
+        precompute_method(scene, mesh, model, "faithful", appearance::record_kind::faithful, {}, o.threads);
     method_table ours = precompute_method(scene, mesh, model, "ours", appearance::record_kind::compact, {}, o.threads);
     std::printf("%-24s %4s %4s %-6s %-9s %9s %9s %7s %7s %7s %9s %9s\n", "scene", "res", "view", "light", "method",
                 "mse", "mse fg", "psnr", "ssim", "B/voxel", "us/voxel", "walk fps");
@@ -217,7 +219,7 @@ int appearance_bench(const appearance_bench_options& o) {
             std::vector<std::vector<std::uint8_t>> strip{ref8};  // reference | each method
             method_table six =
                 precompute_method(scene, mesh, model, "six", appearance::record_kind::six, lights[l], o.threads);
-            for (const method_table* method : {&averages, &sggx, &six, &ours}) {  // the strip's order
+            for (const method_table* method : {&averages, &sggx, &six, &faithful, &ours}) {  // the strip's order
                 const method_table& m = *method;
                 walked_picture w = walk_picture(structure, m, rays, lights[l], size, o.threads);
                 std::vector<std::uint8_t> got8 = srgb8(w.picture);
@@ -284,7 +286,7 @@ command add_appearance_bench(CLI::App& parent) {
         ->capture_default_str();
     app->add_option("--json", o->json, "write one JSON line per method, view and light after a header line");
     app->add_option("--images", o->images,
-                    "write each view's strip (reference | averages | sggx | six | ours) here as PNG");
+                    "write each view's strip (reference | averages | sggx | six | faithful | ours) here as PNG");
     return {app, [o] { return appearance_bench(*o); }};
 }
 

@@ -94,6 +94,34 @@
  *                voxel's mean chord
  *  gamma         0..255 for 0..1: T = gamma exp(-tau) + (1 - gamma) max(1 - tau / 2, 0)
  *
+ * The *faithful* record (the paper's fields, its section 4: a virtual octahedron of 8 faces
+ * with 3 extremal normals and a colour each, and a 3x3x3 subgrid of opacities), 35 words:
+ *
+ *  word a        31        24 23        16 15         8 7          0      (a = 0, 1, 2)
+ *                +------------+------------+------------+------------+
+ *                |  scale a   |   e_a z    |   e_a y    |   e_a x    |
+ *                +------------+------------+------------+------------+
+ *  word 3+3f+k   31        24 23        16 15         8 7          0      (face f = 0..7,
+ *                +------------+------------+------------+------------+     vertex k = 0..2)
+ *                |  colour k  |   n_k z    |   n_k y    |   n_k x    |
+ *                +------------+------------+------------+------------+
+ *  word 27..33   the 27 subgrid opacities, element e in byte e % 4 of word 27 + e / 4
+ *                (e = x + 3 y + 9 z, the element's place in the voxel); word 33's top byte 0
+ *  word 34       31                      16 15          8 7           0
+ *                +--------------------------+-------------+-------------+
+ *                | normals stored, 2 bits/f |  fixed set  |  has data   |
+ *                +--------------------------+-------------+-------------+
+ *
+ *  e_a       axis a of the SGGX frame of the voxel's normals (snorm8 x, y, z)
+ *  scale a   the octahedron's vertex distance along axis a, over the largest, 1..255
+ *  face f    the face in octant f of the frame: vertex k lies on axis k, on its negative
+ *            side where bit k of f is set
+ *  n_k       the face's extremal normal at vertex k (snorm8 x, y, z)
+ *  colour k  byte k of the face's colour: r, g, b for k = 0, 1, 2 (sRGB codes)
+ *  opacity   hits over rays through the element, 0..255; 0 where no front-facing hit lies
+ *  has data  bit f: face f holds samples; fixed set: bit f: its 1..3 normals are stored as
+ *            they were seen (not a distribution), how many in bits 16 + 2f
+ *
  * The 13 opacity directions: the 3 axes, the 6 face diagonals and the 4 body diagonals of
  * the cube, k = 0..12. Component c of direction k (unnormalised, -1, 0 or 1) is
  * VX_APP_DIR(k, c), a float; its length is 1, sqrt 2 or sqrt 3 as it has 1, 2 or 3 non-zero parts.
@@ -144,6 +172,17 @@
 #define VX_APP_FACE_NORMAL_V(f1) (((f1) >> 12) & 0xFFFu)
 #define VX_APP_FACE_SPREAD(f1) (((f1) >> 24) & 0xFFu)
 #define VX_APP_FACE_WORD1(u12, v12, spread) ((u12) | ((v12) << 12) | ((spread) << 24))
+
+#define VX_APP_FAITHFUL_WORDS 35
+#define VX_APP_FAITHFUL_FACE_WORD(f, k) (3u + 3u * (f) + (k))
+#define VX_APP_FAITHFUL_OPACITY_WORD 27u
+#define VX_APP_FAITHFUL_FLAGS_WORD 34u
+#define VX_APP_FAITHFUL_ELEMENTS 27u
+#define VX_APP_FAITHFUL_HAS_DATA(flags, f) (((flags) >> (f)) & 1u)
+#define VX_APP_FAITHFUL_FIXED(flags, f) (((flags) >> (8u + (f))) & 1u)
+#define VX_APP_FAITHFUL_STORED(flags, f) (((flags) >> (16u + 2u * (f))) & 3u)
+/* Byte i (0..3) of word w: the snorm8 components and the top byte of the frame and face words. */
+#define VX_APP_BYTE(w, i) (((w) >> (8u * (i))) & 0xFFu)
 
 /* An 8-bit sRGB code's linear value, x = code / 255: a cubic fit of the sRGB curve, within
  * 0.6 %, the same arithmetic on every backend (appearance/record.h, colour_codes.hpp). */

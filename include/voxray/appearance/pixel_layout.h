@@ -36,5 +36,6 @@
 #define VX_APP_KIND_COMPACT 1u
 #define VX_APP_KIND_SIX 2u
 #define VX_APP_KIND_SGGX 3u
+#define VX_APP_KIND_FAITHFUL 4u
 
 #endif

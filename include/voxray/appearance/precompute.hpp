@@ -13,6 +13,7 @@
 
 #include "voxray/appearance/averages.hpp"
 #include "voxray/appearance/compact.hpp"
+#include "voxray/appearance/faithful.hpp"
 #include "voxray/appearance/sggx_baseline.hpp"
 #include "voxray/appearance/six_directions.hpp"
 #include "voxray/appearance/table.hpp"
@@ -66,9 +67,16 @@ appearance_table precompute(const Scene& scene, const io::triangle_mesh& mesh, c
         std::uint64_t mine = 0;
         for (std::size_t first; (first = next.fetch_add(batch)) < t.voxels.size();)
             for (std::size_t row = first; row < std::min(first + batch, t.voxels.size()); ++row) {
+                auto* words = t.words.data() + row * std::size_t(t.record_words);
+                if (o.kind == record_kind::faithful) {  // the paper's own sampling of the subgrid
+                    faithful_samples paper = sample_faithful(scene, mesh, t.voxels[row], o.sampling);
+                    mine += paper.hits;
+                    auto record = make_faithful_record(paper);
+                    std::copy(record.begin(), record.end(), words);
+                    continue;
+                }
                 sample_voxel(scene, mesh, t.voxels[row], o.sampling, samples);
                 mine += samples.hits;
-                auto* words = t.words.data() + row * std::size_t(t.record_words);
                 if (o.kind == record_kind::averages) {
                     auto record = averages_record(samples);
                     std::copy(record.begin(), record.end(), words);

@@ -49,7 +49,7 @@ inline glm::vec3 from_octahedral(glm::vec2 e) {
 // x in -1..1 as a signed `bits`-bit integer (two's complement, in the low bits) and back.
 inline std::uint32_t snorm(float x, unsigned bits) {
     int scale = (1 << (bits - 1)) - 1;
-    int v = int(std::lround(std::clamp(x, -1.0f, 1.0f) * float(scale)));
+    int v = int(std::lround(std::clamp(std::isnan(x) ? 0.0f : x, -1.0f, 1.0f) * float(scale)));  // NaN: 0
     return std::uint32_t(v) & ((1u << bits) - 1u);
 }
 inline float from_snorm(std::uint32_t v, unsigned bits) {

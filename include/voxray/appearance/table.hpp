@@ -27,7 +27,7 @@ inline bool ordinal_less(glm::ivec3 a, glm::ivec3 b) {
 }
 
 // The records a table can hold (layout.h).
-enum class record_kind { averages, compact, six, sggx };
+enum class record_kind { averages, compact, six, sggx, faithful };
 
 inline const char* record_name(record_kind k) {
     switch (k) {
@@ -35,6 +35,7 @@ inline const char* record_name(record_kind k) {
     case record_kind::compact: return "compact";
     case record_kind::six: return "six";
     case record_kind::sggx: return "sggx";
+    case record_kind::faithful: return "faithful";
     }
     return "unknown";
 }
@@ -46,6 +47,7 @@ inline int record_words(record_kind k) {
     case record_kind::compact: return VX_APP_COMPACT_WORDS;
     case record_kind::six: return VX_APP_SIX_WORDS;
     case record_kind::sggx: return VX_APP_SGGX_WORDS;
+    case record_kind::faithful: return VX_APP_FAITHFUL_WORDS;
     }
     return 0;
 }

@@ -4,7 +4,7 @@
 //   offset  size  field
 //        0     4  magic "VXAP" (0x50415856)
 //        4     4  file version (1)
-//        8     4  record kind (0 averages, 1 compact, 2 six, 3 sggx: table.hpp)
+//        8     4  record kind (0 averages, 1 compact, 2 six, 3 sggx, 4 faithful: table.hpp)
 //       12     4  record words (layout.h: must be the kind's)
 //       16     8  rows                           file size must be
 //       24     8  face pool words                48 + 12 rows + 4 (rows x record words + face words)

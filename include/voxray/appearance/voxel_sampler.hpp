@@ -52,6 +52,7 @@ inline constexpr int max_cut_out_layers = 64;
 // (seen from behind, one-sided), or a sample.
 struct segment_hit {
     bool hit = false, sample = false;
+    float t = 0;  // from the segment's origin, when it hit
     surface_sample seen;
 };
 
@@ -79,7 +80,7 @@ segment_hit first_surface(const Scene& scene, const io::triangle_mesh& mesh, glm
         }
         bool front = glm::dot(hit->normal, dir) < 0.0f;
         segment_hit out;
-        out.hit = true, out.sample = front || double_sided;
+        out.hit = true, out.sample = front || double_sided, out.t = hit->t - margin;
         out.seen = {front ? hit->normal : -hit->normal, colour};
         return out;
     }

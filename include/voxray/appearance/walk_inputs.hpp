@@ -44,6 +44,7 @@ struct walk_words {
         case record_kind::compact: return VX_APP_KIND_COMPACT;
         case record_kind::six: return VX_APP_KIND_SIX;
         case record_kind::sggx: return VX_APP_KIND_SGGX;
+        case record_kind::faithful: return VX_APP_KIND_FAITHFUL;
         }
         fail("appearance walk: unknown record kind ", int(k));
     }

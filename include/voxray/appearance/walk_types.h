@@ -1,6 +1,6 @@
 /* What the compositing walk (walk.inc) returns (its layout: pixel_layout.h), and the
  * helpers it shares across structures: a voxel's exit along a ray, and a record's sample
- * by kind. Needs prelude.h, kernels/ray.h, record.h and ordinal.h. Included once per lane
+ * by kind. Needs prelude.h, kernels/ray.h, record.h, faithful_record.h and ordinal.h. Included once per lane
  * set; no include guard. */
 #include "voxray/appearance/pixel_layout.h"
 
@@ -39,6 +39,8 @@ VX_APP_FN vx_app_sample vx_app_record_sample(VX_BLOB records, VX_BLOB faces, uin
     if (kind == VX_APP_KIND_AVERAGES)
         return vx_app_averages_sample(vx_blob_at(records, row * VX_APP_AVERAGES_WORDS), dx, dy, dz, light);
     if (kind == VX_APP_KIND_SIX) return vx_app_six_sample(vx_blob_at(records, row * VX_APP_SIX_WORDS), dx, dy, dz);
+    if (kind == VX_APP_KIND_FAITHFUL)
+        return vx_app_faithful_sample(vx_blob_at(records, row * VX_APP_FAITHFUL_WORDS), dx, dy, dz, light);
     if (kind == VX_APP_KIND_SGGX)
         return vx_app_sggx_sample(vx_blob_at(records, row * VX_APP_SGGX_WORDS), dx, dy, dz, light);
     return vx_app_compact_sample(vx_blob_at(records, row * VX_APP_COMPACT_WORDS), faces, dx, dy, dz, light);

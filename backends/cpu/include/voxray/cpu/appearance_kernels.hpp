@@ -7,5 +7,6 @@
 namespace voxray::kernels::scalar {
 #include "voxray/appearance/ordinal.h"
 #include "voxray/appearance/record.h"
+#include "voxray/appearance/faithful_record.h"
 #include "voxray/appearance/walk_types.h"
 }  // namespace voxray::kernels::scalar
