@@ -24,7 +24,7 @@ TOOL="$(realpath -m --relative-to="$ROOT" "$BUILD_DIR")/voxray" OUT=docs/bench
 echo "== configure and build the tool ($BUILD_DIR)"
 cmake -S "$ROOT" -B "$BUILD_DIR" -DCMAKE_BUILD_TYPE=Release ${CMAKE_EXTRA:-} >/dev/null
 cmake --build "$BUILD_DIR" -j"$(nproc)" --target voxray_tool
-STRIPS="$BUILD_DIR/appearance_strips"
+STRIPS="$(realpath -m --relative-to="$ROOT" "$BUILD_DIR")/appearance_strips"  # relative: recorded in the results
 rm -rf "$OUT/appearance_results.jsonl" "$STRIPS" "$OUT/appearance"
 mkdir -p "$STRIPS" "$OUT/appearance"
 for resolution in ${RESOLUTIONS:-128 256}; do
