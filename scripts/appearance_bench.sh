@@ -1,11 +1,12 @@
 #!/usr/bin/env bash
 # Filtered voxel appearance against the triangles (issue 25): voxray appearance-bench on
 # shared meshes at 128^3 and 256^3 (pictures of 128^2 and 256^2, as in the paper), 3 views,
-# a light in front and one behind, 2 threads. Writes docs/bench/appearance_results.jsonl and
-# the strips (reference | averages | sggx | six | faithful | ours) into the build folder, then the table
+# a light in front and one behind, 2 threads, with --lod (ours re-sampled from ours at twice the
+# resolution). Writes docs/bench/appearance_results.jsonl and the strips
+# (reference | averages | sggx | six | faithful | ours | ours_lod) into the build folder, then the table
 # (docs/bench/appearance_table.md, also in docs/appearance.md) with every metric checked
 # against scikit-image's on the strips, and keeps view 0's strips in docs/bench/appearance/.
-# About 12 minutes on 2 shared cores.
+# About 25 minutes on 2 shared cores.
 # Override SCENES (space-separated), RESOLUTIONS, REFERENCE_SIDE (16: 256 samples a pixel).
 set -euo pipefail
 source "$(dirname "${BASH_SOURCE[0]}")/setup.sh"
@@ -32,7 +33,7 @@ for resolution in ${RESOLUTIONS:-128 256}; do
         echo "== appearance-bench $scene at $resolution"
         part="$OUT/appearance_part.jsonl"  # relative: the header records the command line
         "$TOOL" appearance-bench "$scene" --resolution "$resolution" --views 3 --threads 2 \
-            --reference-side "${REFERENCE_SIDE:-16}" --json "$part" --images "$STRIPS"
+            --reference-side "${REFERENCE_SIDE:-16}" --lod --json "$part" --images "$STRIPS"
         # One results file: the first header, then every run's rows.
         if [ -s "$OUT/appearance_results.jsonl" ]; then tail -n +2 "$part" >> "$OUT/appearance_results.jsonl"
         else cp "$part" "$OUT/appearance_results.jsonl"; fi

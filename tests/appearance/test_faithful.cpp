@@ -84,8 +84,9 @@ struct red_slab {
 TEST(appearance_faithful, a_slabs_opacity_against_its_exact_coverage_beside_ours) {
     red_slab s;
     embree::triangle_scene scene(s.mesh, s.grid);
-    faithful_words w = make_faithful_record(sample_faithful(scene, s.mesh, {1, 1, 1}, {.rays = 600}));
-    directional_opacities ours = directional_opacity(scene, s.mesh, {1, 1, 1}, 2, 1);
+    faithful_words w =
+        make_faithful_record(sample_faithful(triangle_surfaces{scene, s.mesh}, {1, 1, 1}, {.rays = 600}));
+    directional_opacities ours = directional_opacity(triangle_surfaces{scene, s.mesh}, {1, 1, 1}, 2, 1);
     double faithful_worst = 0, ours_worst = 0;
     for (unsigned k = 0; k < VX_APP_DIRECTIONS; ++k) {
         glm::dvec3 d = opacity_direction(k);
@@ -105,7 +106,7 @@ TEST(appearance_faithful, a_slabs_opacity_against_its_exact_coverage_beside_ours
 TEST(appearance_faithful, a_plane_is_a_fixed_set_of_one_normal_and_shows_its_colour_lit) {
     red_slab s;
     embree::triangle_scene scene(s.mesh, s.grid);
-    faithful_samples samples = sample_faithful(scene, s.mesh, {1, 1, 1}, {});
+    faithful_samples samples = sample_faithful(triangle_surfaces{scene, s.mesh}, {1, 1, 1}, {});
     faithful_words w = make_faithful_record(samples);
     std::uint32_t flags = w[VX_APP_FAITHFUL_FLAGS_WORD];
     // Double-sided: rays from above see +z, from below -z, two octants, one normal each.

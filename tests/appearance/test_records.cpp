@@ -106,7 +106,7 @@ TEST(appearance_records, a_slabs_opacity_against_its_exact_coverage) {
     add_slab_quad(m, {0, 0, 1.5}, {3, 0, 1.5}, {3, 3, 1.5}, {0, 3, 1.5});
     m.group_names = {"plane"};
     embree::triangle_scene scene(m, slab_grid());
-    directional_opacities alpha = directional_opacity(scene, m, {1, 1, 1}, 16, 1);
+    directional_opacities alpha = directional_opacity(triangle_surfaces{scene, m}, {1, 1, 1}, 16, 1);
     double worst = 0, axes = 0;
     compact_record r = make_compact_record({}, alpha);
     for (unsigned k = 0; k < VX_APP_DIRECTIONS; ++k) {

@@ -3,7 +3,8 @@
 // precomputed with Embree (bytes and µs a voxel), then for each view and for a light in
 // front and one behind, the reference (Embree on the triangles, --reference-spp stratified
 // samples a pixel) and every method's picture by the compositing walk (4 rays a pixel):
-// averages, SGGX, six directions (made for each light) and ours (the compact record),
+// averages, SGGX, six directions (made for each light) and ours (the compact record), and
+// with --lod ours re-sampled from the level at twice the resolution (appearance/resample.hpp),
 // compared in sRGB: MSE (all pixels, and the pixels the reference covers), PSNR and SSIM
 // (scikit-image's parameters, per channel; scripts/appearance_table.py checks them with
 // scikit-image itself). One JSON line per method, view and light after a header line.
@@ -11,6 +12,7 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <optional>
 
 #include <nlohmann/json.hpp>
 
@@ -26,6 +28,7 @@
 #if VOXRAY_WITH_EMBREE
 #include "appearance_reference.hpp"
 #include "voxray/appearance/precompute.hpp"
+#include "voxray/appearance/resample.hpp"
 #include "voxray/cpu/appearance_walk.hpp"
 #include "voxray/brickmap/brickmap.hpp"
 #include "voxray/dense_grid/dense_grid.hpp"
@@ -46,6 +49,7 @@ struct appearance_bench_options {
     int reference_side = 16;  // 16 x 16 = 256 samples a pixel (the paper: 1024)
     unsigned threads = 2;
     std::string structure = "dense";  // whose first-hit kernel the walk re-enters
+    bool lod = false;                  // also ours re-sampled from the level at twice the resolution
     std::string json, images;
 };
 
@@ -131,6 +135,25 @@ walk_structure build_structure(const std::string& name, const voxel_model& model
     return {name, words(dense_grid(model).blob())};
 }
 
+// Ours at the resolution of `coarse_grid`, re-sampled through the walk from ours at twice it
+// (made from the triangles there): a LOD level as a chain builds it. Its voxels are the
+// finer level's coarser_voxels, so it has a structure of its own (`structure`).
+method_table resampled_method(const io::triangle_mesh& mesh, int resolution, const std::string& structure_name,
+                              unsigned threads, walk_structure& structure) {
+    voxel_model fine = io::voxelize(mesh, {.resolution = 2 * resolution, .threads = threads});
+    embree::triangle_scene fine_scene(mesh, io::make_grid_map(mesh.bounds(), 2 * resolution));
+    const appearance::precompute_options o{.kind = appearance::record_kind::compact, .threads = threads};
+    appearance::appearance_table fine_table = appearance::precompute(fine_scene, mesh, fine, o);
+    dense_grid fine_grid(fine);
+    appearance_walker<kernels::dense_grid_kernel> walker({fine_grid.blob().begin(), fine_grid.blob().end()},
+                                                         fine_table, 1);
+    voxel_model coarse = appearance::coarser_voxels(fine);
+    structure = build_structure(structure_name, coarse);
+    method_table m{"ours_lod", {}, {}};
+    m.table = appearance::resample(walker, coarse, o, &m.stats);
+    return m;
+}
+
 // The walk of `rays` over `blob`; `seconds` gets the walk's time alone, without setting up
 // the walker (copying the blob, building the ordinal index, starting its threads).
 template <class Kernel>
@@ -199,6 +222,9 @@ int appearance_bench(const appearance_bench_options& o) {
     method_table faithful =
         precompute_method(scene, mesh, model, "faithful", appearance::record_kind::faithful, {}, o.threads);
     method_table ours = precompute_method(scene, mesh, model, "ours", appearance::record_kind::compact, {}, o.threads);
+    walk_structure lod_structure;
+    std::optional<method_table> ours_lod;
+    if (o.lod) ours_lod = resampled_method(mesh, o.resolution, o.structure, o.threads, lod_structure);
     std::printf("%-24s %4s %4s %-6s %-9s %9s %9s %7s %7s %7s %9s %9s\n", "scene", "res", "view", "light", "method",
                 "mse", "mse fg", "psnr", "ssim", "B/voxel", "us/voxel", "walk fps");
     for (int view = 0; view < o.views; ++view) {
@@ -219,9 +245,12 @@ int appearance_bench(const appearance_bench_options& o) {
             std::vector<std::vector<std::uint8_t>> strip{ref8};  // reference | each method
             method_table six =
                 precompute_method(scene, mesh, model, "six", appearance::record_kind::six, lights[l], o.threads);
-            for (const method_table* method : {&averages, &sggx, &six, &faithful, &ours}) {  // the strip's order
+            std::vector<const method_table*> methods{&averages, &sggx, &six, &faithful, &ours};  // the strip's order
+            if (ours_lod) methods.push_back(&*ours_lod);
+            for (const method_table* method : methods) {
                 const method_table& m = *method;
-                walked_picture w = walk_picture(structure, m, rays, lights[l], size, o.threads);
+                const bool lod = ours_lod && method == &*ours_lod;
+                walked_picture w = walk_picture(lod ? lod_structure : structure, m, rays, lights[l], size, o.threads);
                 std::vector<std::uint8_t> got8 = srgb8(w.picture);
                 picture_errors e = compare(ref8, got8, reference[l].coverage, size, size);
                 std::printf("%-24s %4d %4d %-6s %-9s %9.5f %9.5f %7.2f %7.4f %7.1f %9.1f %9.2f\n", scene_name.c_str(),
@@ -230,13 +259,15 @@ int appearance_bench(const appearance_bench_options& o) {
                 std::fflush(stdout);
                 if (out)
                     out->stream() << nlohmann::json{{"scene", scene_name}, {"resolution", o.resolution}, {"size", size},
+                                                    {"lod_from", lod ? 2 * o.resolution : 0},
                                                     {"view", view}, {"light", light_name}, {"method", m.name},
                                                     {"mse", e.mse}, {"mse_foreground", e.mse_foreground},
                                                     {"psnr", e.psnr}, {"ssim", e.ssim},
                                                     {"bytes_per_voxel", m.table.bytes_per_voxel()},
                                                     {"precompute_us_per_voxel", m.stats.us_per_voxel()},
                                                     {"precompute_rays_per_second", m.stats.rays_per_second()},
-                                                    {"precompute_threads", o.threads}, {"voxels", model.voxel_count()},
+                                                    {"precompute_threads", o.threads},
+                                                    {"voxels", m.table.voxels.size()},
                                                     {"reference_spp", o.reference_side * o.reference_side},
                                                     {"rays_per_pixel", 4}, {"walk_seconds", w.seconds},
                                                     {"walk_fps", 1.0 / w.seconds}, {"walk_threads", o.threads},
@@ -284,9 +315,12 @@ command add_appearance_bench(CLI::App& parent) {
     app->add_option("--structure", o->structure, "the structure whose first-hit kernel the walk re-enters")
         ->check(CLI::IsMember(walk_structures))
         ->capture_default_str();
+    app->add_flag("--lod", o->lod,
+                  "also ours_lod: ours re-sampled through the walk from ours at twice the resolution (a LOD level)");
     app->add_option("--json", o->json, "write one JSON line per method, view and light after a header line");
     app->add_option("--images", o->images,
-                    "write each view's strip (reference | averages | sggx | six | faithful | ours) here as PNG");
+                    "write each view's strip (reference | averages | sggx | six | faithful | ours [| ours_lod]) "
+                    "here as PNG");
     return {app, [o] { return appearance_bench(*o); }};
 }
 

@@ -2,7 +2,7 @@
  * structure's kernel, the appearance dialect and the walk instantiated over that kernel's
  * closest hit as vx_app_walk (cmake/voxray_kernels.cmake writes that part). The host looks
  * it up as vx_appearance_walk in program <structure>_appearance (opencl/appearance_walk.hpp).
- * One work-item walks one ray; items past `count` do nothing. Pixels are the 52-byte
+ * One work-item walks one ray; items past `count` do nothing. Pixels are the 64-byte
  * records of appearance/pixel_layout.h, identical on host and device. */
 __kernel void vx_appearance_walk(__global const uint* blob, __global const uint* index,
                                  __global const uint* records, __global const uint* faces,

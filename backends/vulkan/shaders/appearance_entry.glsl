@@ -7,7 +7,7 @@
 layout(local_size_x = 64, local_size_y = 1, local_size_z = 1) in;
 
 layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer vx_app_rays { vx_ray r[]; };
-// 52-byte records of 32-bit scalars (appearance/pixel_layout.h): their std430 layout too.
+// 64-byte records of 32-bit scalars (appearance/pixel_layout.h): their std430 layout too.
 layout(buffer_reference, std430, buffer_reference_align = 4) writeonly buffer vx_app_pixels { vx_app_walk_result p[]; };
 
 // Must match voxray::vulkan_detail::appearance_push (vulkan/appearance_walk.hpp): six

@@ -61,13 +61,12 @@ struct faithful_samples {
     std::uint32_t hits = 0;       // rays stopped in the voxel
 };
 
-template <class Scene>
-faithful_samples sample_faithful(const Scene& scene, const io::triangle_mesh& mesh, glm::ivec3 voxel,
-                                 const sampling_options& o) {
+template <class Surfaces>
+faithful_samples sample_faithful(const Surfaces& surfaces, glm::ivec3 voxel, const sampling_options& o) {
     faithful_samples out;
     for (std::uint32_t i = 0; i < o.rays; ++i) {
         sampling_ray r = voxel_ray(voxel, i, o.rays, o.stratified, o.seed);
-        segment_hit h = first_surface(scene, mesh, r.origin, r.direction, r.length);
+        segment_hit h = surfaces.first_surface(r.origin, r.direction, r.length);
         glm::dvec3 local = r.origin - glm::dvec3(voxel);
         // The code's rule: a ray counts in every element its line crosses, also past its hit.
         std::uint32_t crossed = crossed_elements(local, r.direction, r.length);

@@ -71,14 +71,13 @@ VX_APP_FN float vx_app_faithful_opacity(VX_BLOB record, float dx, float dy, floa
 
 /* Face f's lighting seen along d: the mean shade of its normals turned to the viewer (the
  * stored ones of a fixed set, else the three extremal normals interpolated at 16 fixed
- * points); a = how many were kept. */
+ * points); a = how many were kept, n their sum. */
 VX_APP_FN vx_app_sample vx_app_faithful_face_light(VX_BLOB record, uint f, uint flags, float dx, float dy, float dz,
                                                    vx_app_light light) {
     vx_app_vec n0 = vx_app_byte_vec(vx_load(record, VX_APP_FAITHFUL_FACE_WORD(f, 0u)));
     vx_app_vec n1 = vx_app_byte_vec(vx_load(record, VX_APP_FAITHFUL_FACE_WORD(f, 1u)));
     vx_app_vec n2 = vx_app_byte_vec(vx_load(record, VX_APP_FAITHFUL_FACE_WORD(f, 2u)));
-    vx_app_sample got;
-    got.r = 0.0f, got.g = 0.0f, got.b = 0.0f, got.a = 0.0f;
+    vx_app_sample got = vx_app_no_sample();
     uint points = VX_APP_FAITHFUL_FIXED(flags, f) != 0u ? VX_APP_FAITHFUL_STORED(flags, f) : 16u;
     for (uint i = 0u; i < points; ++i) {
         vx_app_vec n = i == 0u ? n0 : (i == 1u ? n1 : n2);
@@ -97,6 +96,7 @@ VX_APP_FN vx_app_sample vx_app_faithful_face_light(VX_BLOB record, uint f, uint 
         if (vx_app_dot(n, dx, dy, dz) >= 0.0f) continue;
         got.r = got.r + vx_app_shade(n, light);
         got.a = got.a + 1.0f;
+        got.nx = got.nx + n.x, got.ny = got.ny + n.y, got.nz = got.nz + n.z;
     }
     return got;
 }
@@ -109,8 +109,7 @@ VX_APP_FN vx_app_sample vx_app_faithful_sample(VX_BLOB record, float dx, float d
     uint w0 = vx_load(record, 0u), w1 = vx_load(record, 1u), w2 = vx_load(record, 2u);
     vx_app_vec e0 = vx_app_byte_vec(w0), e1 = vx_app_byte_vec(w1), e2 = vx_app_byte_vec(w2);
     float s0 = vx_u2f(VX_APP_BYTE(w0, 3u)), s1 = vx_u2f(VX_APP_BYTE(w1, 3u)), s2 = vx_u2f(VX_APP_BYTE(w2, 3u));
-    vx_app_sample got;
-    got.r = 0.0f, got.g = 0.0f, got.b = 0.0f;
+    vx_app_sample got = vx_app_no_sample();
     float total = 0.0f;
     for (uint f = 0u; f < 8u; ++f) {
         if (VX_APP_FAITHFUL_HAS_DATA(flags, f) == 0u) continue;
@@ -126,7 +125,8 @@ VX_APP_FN vx_app_sample vx_app_faithful_sample(VX_BLOB record, float dx, float d
         uint face0 = vx_load(record, VX_APP_FAITHFUL_FACE_WORD(f, 0u));
         uint face1 = vx_load(record, VX_APP_FAITHFUL_FACE_WORD(f, 1u));
         uint face2 = vx_load(record, VX_APP_FAITHFUL_FACE_WORD(f, 2u));
-        float shade = area * lit.r / lit.a;
+        float shade = area * lit.r / lit.a, share = area / lit.a;
+        got.nx = got.nx + share * lit.nx, got.ny = got.ny + share * lit.ny, got.nz = got.nz + share * lit.nz;
         got.r = got.r + shade * vx_app_linear8(VX_APP_BYTE(face0, 3u));
         got.g = got.g + shade * vx_app_linear8(VX_APP_BYTE(face1, 3u));
         got.b = got.b + shade * vx_app_linear8(VX_APP_BYTE(face2, 3u));
@@ -135,5 +135,5 @@ VX_APP_FN vx_app_sample vx_app_faithful_sample(VX_BLOB record, float dx, float d
     float inv = total > 0.0f ? 1.0f / total : 0.0f;
     got.r = got.r * inv, got.g = got.g * inv, got.b = got.b * inv;
     got.a = vx_app_faithful_opacity(record, dx, dy, dz);
-    return got;
+    return vx_app_unit_normal(got);
 }

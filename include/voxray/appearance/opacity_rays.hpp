@@ -3,8 +3,9 @@
 // inside it. The rays enter through each face the direction sees (1, 2 or 3 of them, all
 // with the same projected area, as every component is 0 or +-1) at the jittered centres of
 // an n x n grid, so the share is the covered part of the silhouette, with no thickening of
-// thin surfaces (the paper's 3^3 subgrid widens them; see docs/appearance.md). A direction
-// and its opposite see the same silhouette, so one of them is enough.
+// thin surfaces (the paper's 3^3 subgrid widens them; see docs/appearance.md). A ray counts
+// with its coverage: 1 on a triangle, 0..1 through a finer level's filtered voxels. A
+// direction and its opposite see the same silhouette, so one of them is enough.
 #pragma once
 #include <array>
 #include <cstdint>
@@ -27,13 +28,14 @@ inline glm::dvec3 opacity_direction(unsigned k) {
 // Ray ids of the opacity rays in the random streams, apart from the sampling rays'.
 inline constexpr std::uint32_t opacity_ray_ids = 0x80000000u;
 
-template <class Scene>
-directional_opacities directional_opacity(const Scene& scene, const io::triangle_mesh& mesh, glm::ivec3 voxel,
-                                          unsigned strata, std::uint64_t seed) {
+template <class Surfaces>
+directional_opacities directional_opacity(const Surfaces& surfaces, glm::ivec3 voxel, unsigned strata,
+                                          std::uint64_t seed) {
     directional_opacities alpha{};
     for (unsigned k = 0; k < VX_APP_DIRECTIONS; ++k) {
         glm::dvec3 d = opacity_direction(k);
-        unsigned rays = 0, hits = 0;
+        unsigned rays = 0;
+        double covered = 0;
         for (int axis = 0; axis < 3; ++axis) {
             if (VX_APP_DIR(k, unsigned(axis)) == 0.0f) continue;
             int u = (axis + 1) % 3, v = (axis + 2) % 3;
@@ -43,10 +45,10 @@ directional_opacities directional_opacity(const Scene& scene, const io::triangle
                 p[axis] = d[axis] > 0 ? 0.0 : 1.0;
                 p[u] = (double(cell % strata) + uniform01(seed, voxel, id, 0)) / double(strata);
                 p[v] = (double(cell / strata) + uniform01(seed, voxel, id, 1)) / double(strata);
-                hits += first_surface(scene, mesh, glm::dvec3(voxel) + p, d, exit_length(p, d)).hit ? 1u : 0u;
+                covered += surfaces.first_surface(glm::dvec3(voxel) + p, d, exit_length(p, d)).coverage;
             }
         }
-        alpha[k] = double(hits) / double(rays);
+        alpha[k] = covered / double(rays);
     }
     return alpha;
 }

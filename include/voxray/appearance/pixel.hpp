@@ -20,6 +20,7 @@ struct appearance_pixel {
     std::uint32_t visits = 0;                          // voxels blended
     std::uint32_t steps = 0;                           // structure kernel steps, every re-entry
     std::uint32_t status = VX_STATUS_MISS;             // or VX_APP_WALK_NO_RECORD
+    float nx = 0, ny = 0, nz = 0;                      // blended normal, length 1 - transmittance at most
 
     bool is_hit() const { return status == VX_STATUS_HIT; }
 };
@@ -34,5 +35,6 @@ static_assert(offsetof(appearance_pixel, material) == VX_APP_PIXEL_OFFSET_MATERI
 static_assert(offsetof(appearance_pixel, visits) == VX_APP_PIXEL_OFFSET_VISITS);
 static_assert(offsetof(appearance_pixel, steps) == VX_APP_PIXEL_OFFSET_STEPS);
 static_assert(offsetof(appearance_pixel, status) == VX_APP_PIXEL_OFFSET_STATUS);
+static_assert(offsetof(appearance_pixel, nx) == VX_APP_PIXEL_OFFSET_NORMAL);
 
 }  // namespace voxray

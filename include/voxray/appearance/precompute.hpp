@@ -42,11 +42,13 @@ struct precompute_stats {
 // Opacity rays a voxel: each of the 13 directions enters through 1, 2 or 3 faces.
 inline std::uint64_t opacity_rays_per_voxel(unsigned strata) { return 27ull * strata * strata; }
 
-template <class Scene>
-appearance_table precompute(const Scene& scene, const io::triangle_mesh& mesh, const voxel_model& model,
-                            const precompute_options& o = {}, precompute_stats* stats = nullptr) {
+// The table of `voxels` (any order) made from what their sampling rays meet on `surfaces`
+// (appearance/voxel_sampler.hpp: triangle_surfaces, or a finer level's through
+// appearance/resample.hpp), in the voxel space of `voxels`.
+template <class Surfaces>
+appearance_table build_table(const Surfaces& surfaces, std::vector<glm::ivec3> voxels, const precompute_options& o,
+                             precompute_stats* stats = nullptr) {
     if (o.sampling.rays == 0) fail("appearance precompute: 0 sampling rays a voxel");
-    mesh.validate();  // a mesh built by hand may hold what the readers refuse (a NaN vertex)
     const bool compact = o.kind == record_kind::compact;
     if (compact && o.opacity_strata == 0) fail("appearance precompute: 0 opacity strata");
     auto start = std::chrono::steady_clock::now();
@@ -54,7 +56,7 @@ appearance_table precompute(const Scene& scene, const io::triangle_mesh& mesh, c
     t.kind = o.kind;
     t.record_words = record_words(o.kind);
     if (t.record_words == 0) fail("appearance precompute: unknown record kind ", int(o.kind));
-    model.for_each_voxel([&](glm::ivec3 p, std::uint8_t) { t.voxels.push_back(p); });
+    t.voxels = std::move(voxels);
     std::sort(t.voxels.begin(), t.voxels.end(), ordinal_less);
     t.words.assign(t.voxels.size() * std::size_t(t.record_words), 0);
     std::vector<std::vector<std::uint32_t>> row_faces(compact ? t.voxels.size() : 0);
@@ -69,13 +71,13 @@ appearance_table precompute(const Scene& scene, const io::triangle_mesh& mesh, c
             for (std::size_t row = first; row < std::min(first + batch, t.voxels.size()); ++row) {
                 auto* words = t.words.data() + row * std::size_t(t.record_words);
                 if (o.kind == record_kind::faithful) {  // the paper's own sampling of the subgrid
-                    faithful_samples paper = sample_faithful(scene, mesh, t.voxels[row], o.sampling);
+                    faithful_samples paper = sample_faithful(surfaces, t.voxels[row], o.sampling);
                     mine += paper.hits;
                     auto record = make_faithful_record(paper);
                     std::copy(record.begin(), record.end(), words);
                     continue;
                 }
-                sample_voxel(scene, mesh, t.voxels[row], o.sampling, samples);
+                sample_voxel(surfaces, t.voxels[row], o.sampling, samples);
                 mine += samples.hits;
                 if (o.kind == record_kind::averages) {
                     auto record = averages_record(samples);
@@ -92,9 +94,9 @@ appearance_table precompute(const Scene& scene, const io::triangle_mesh& mesh, c
                     std::copy(record.begin(), record.end(), words);
                     continue;
                 }
-                compact_record r = make_compact_record(
-                    voxel_faces(samples), directional_opacity(scene, mesh, t.voxels[row], o.opacity_strata,
-                                                              o.sampling.seed));
+                directional_opacities alpha =
+                    directional_opacity(surfaces, t.voxels[row], o.opacity_strata, o.sampling.seed);
+                compact_record r = make_compact_record(voxel_faces(samples), alpha);
                 std::copy(r.head.begin(), r.head.end(), words);
                 row_faces[row] = std::move(r.faces);
             }
@@ -112,6 +114,15 @@ appearance_table precompute(const Scene& scene, const io::triangle_mesh& mesh, c
         stats->seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     }
     return t;
+}
+
+template <class Scene>
+appearance_table precompute(const Scene& scene, const io::triangle_mesh& mesh, const voxel_model& model,
+                            const precompute_options& o = {}, precompute_stats* stats = nullptr) {
+    mesh.validate();  // a mesh built by hand may hold what the readers refuse (a NaN vertex)
+    std::vector<glm::ivec3> voxels;
+    model.for_each_voxel([&](glm::ivec3 p, std::uint8_t) { voxels.push_back(p); });
+    return build_table(triangle_surfaces<Scene>{scene, mesh}, std::move(voxels), o, stats);
 }
 
 }  // namespace voxray::appearance

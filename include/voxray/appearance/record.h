@@ -20,10 +20,28 @@ VX_STRUCT(vx_app_light)
     float ambient;     /* 0..1 */
 VX_END_STRUCT(vx_app_light)
 
-/* A voxel's contribution along a ray: linear colour, and opacity. */
+/* A voxel's contribution along a ray: linear colour, opacity, and its normal there (unit,
+ * or 0 where it has none): turned to the viewer, except where a compact record shows faces
+ * seen from behind. The walk blends the normals as it blends the colours; a coarser level
+ * re-sampled through the walk takes its normals from them (appearance/resample.hpp). */
 VX_STRUCT(vx_app_sample)
     float r, g, b, a;
+    float nx, ny, nz;
 VX_END_STRUCT(vx_app_sample)
+
+VX_APP_FN vx_app_sample vx_app_no_sample(void) {
+    vx_app_sample s;
+    s.r = 0.0f, s.g = 0.0f, s.b = 0.0f, s.a = 0.0f, s.nx = 0.0f, s.ny = 0.0f, s.nz = 0.0f;
+    return s;
+}
+
+/* s's normal scaled to unit length, or 0 where it is 0. */
+VX_APP_FN vx_app_sample vx_app_unit_normal(vx_app_sample s) {
+    float length = vx_sqrt(s.nx * s.nx + s.ny * s.ny + s.nz * s.nz);
+    float inv = length > 0.0f ? 1.0f / length : 0.0f;
+    s.nx = s.nx * inv, s.ny = s.ny * inv, s.nz = s.nz * inv;
+    return s;
+}
 
 /* An 8-bit sRGB code to linear 0..1 (layout.h). */
 VX_APP_FN float vx_app_linear8(uint code) {
@@ -107,15 +125,14 @@ VX_APP_FN vx_app_vec vx_app_face_node(vx_app_vec n, float spread, uint q) {
  * the weighted colour sum in r, g, b and the sum of the weights in a. */
 VX_APP_FN vx_app_sample vx_app_compact_faces(VX_BLOB faces, uint first, uint count, float dx, float dy, float dz,
                                              vx_app_light light, float side) {
-    vx_app_sample sum;
-    sum.r = 0.0f, sum.g = 0.0f, sum.b = 0.0f, sum.a = 0.0f;
+    vx_app_sample sum = vx_app_no_sample();
     for (uint f = 0u; f < count; ++f) {
         uint at = (first + f) * VX_APP_FACE_WORDS;
         uint f0 = vx_load(faces, at), f1 = vx_load(faces, at + 1u);
         vx_app_vec n = vx_app_octahedral(vx_app_snorm(VX_APP_FACE_NORMAL_U(f1), 12u),
                                          vx_app_snorm(VX_APP_FACE_NORMAL_V(f1), 12u));
         float spread = vx_u2f(VX_APP_FACE_SPREAD(f1)) * (VX_APP_SPREAD_MAX / 255.0f);
-        float area = 0.0f, lit = 0.0f;
+        float area = 0.0f, lit = 0.0f, weight = vx_u2f(VX_APP_FACE_WEIGHT(f0));
         for (uint q = 0u; q < 4u; ++q) {
             vx_app_vec m = vx_app_face_node(n, spread, q);
             m.x = side * m.x, m.y = side * m.y, m.z = side * m.z;
@@ -123,7 +140,10 @@ VX_APP_FN vx_app_sample vx_app_compact_faces(VX_BLOB faces, uint first, uint cou
             area = area + facing;
             lit = lit + facing * vx_app_shade(m, light);
         }
-        float weight = vx_u2f(VX_APP_FACE_WEIGHT(f0));
+        /* the face's own mean normal, by the area it shows (the nodes' would lean to the viewer) */
+        sum.nx = sum.nx + weight * area * side * n.x;
+        sum.ny = sum.ny + weight * area * side * n.y;
+        sum.nz = sum.nz + weight * area * side * n.z;
         sum.a = sum.a + weight * area;
         lit = lit * weight;
         sum.r = sum.r + lit * vx_app_linear8(VX_APP_FACE_R(f0));
@@ -143,11 +163,16 @@ VX_APP_FN vx_app_sample vx_app_compact_sample(VX_BLOB record, VX_BLOB faces, flo
     uint h0 = vx_load(record, 0u), h1 = vx_load(record, 1u), h2 = vx_load(record, 2u);
     uint first = VX_APP_FIRST_FACE(h0), count = VX_APP_FACES(h1);
     vx_app_sample got = vx_app_compact_faces(faces, first, count, dx, dy, dz, light, 1.0f);
-    if (got.a <= 0.0f) got = vx_app_compact_faces(faces, first, count, dx, dy, dz, light, -1.0f);
+    if (got.a <= 0.0f) {
+        got = vx_app_compact_faces(faces, first, count, dx, dy, dz, light, -1.0f);
+        /* the normal the faces have, away from the viewer: a re-sampling ray can tell it met
+         * the surface from behind */
+        got.nx = -got.nx, got.ny = -got.ny, got.nz = -got.nz;
+    }
     float inv = got.a > 0.0f ? 1.0f / got.a : 0.0f;
     got.r = got.r * inv, got.g = got.g * inv, got.b = got.b * inv;
     got.a = vx_app_opacity(h1, h2, dx, dy, dz);
-    return got;
+    return vx_app_unit_normal(got);
 }
 
 /* The colour of word w0 (r, g, b in its low three bytes) shaded with normal n turned to the
@@ -160,6 +185,7 @@ VX_APP_FN vx_app_sample vx_app_lit_word(uint w0, vx_app_vec n, float dx, float d
     got.g = shade * vx_app_linear8(VX_APP_AVG_G(w0));
     got.b = shade * vx_app_linear8(VX_APP_AVG_B(w0));
     got.a = 0.0f;
+    got.nx = n.x, got.ny = n.y, got.nz = n.z;
     return got;
 }
 
@@ -167,8 +193,12 @@ VX_APP_FN vx_app_sample vx_app_lit_word(uint w0, vx_app_vec n, float dx, float d
  * travels along, weighted by the squares of its direction's parts (they sum to 1). Lit
  * when it was made: no light here. */
 VX_APP_FN vx_app_sample vx_app_six_sample(VX_BLOB record, float dx, float dy, float dz) {
-    vx_app_sample got;
-    got.r = 0.0f, got.g = 0.0f, got.b = 0.0f, got.a = 0.0f;
+    vx_app_sample got = vx_app_no_sample();
+    /* no normals stored: the faces of the axis directions it reads, weighted alike */
+    got.nx = dx < 0.0f ? dx * dx : -dx * dx;
+    got.ny = dy < 0.0f ? dy * dy : -dy * dy;
+    got.nz = dz < 0.0f ? dz * dz : -dz * dz;
+    got = vx_app_unit_normal(got);
     for (uint axis = 0u; axis < 3u; ++axis) {
         float d = axis == 0u ? dx : (axis == 1u ? dy : dz);
         uint w0 = vx_load(record, 2u * axis + (d < 0.0f ? 1u : 0u));

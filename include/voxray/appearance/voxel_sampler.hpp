@@ -52,7 +52,8 @@ inline constexpr int max_cut_out_layers = 64;
 // (seen from behind, one-sided), or a sample.
 struct segment_hit {
     bool hit = false, sample = false;
-    float t = 0;  // from the segment's origin, when it hit
+    float t = 0;         // from the segment's origin, when it hit
+    float coverage = 0;  // how much of the ray stopped: 1 on a triangle, 0..1 on filtered voxels
     surface_sample seen;
 };
 
@@ -80,22 +81,34 @@ segment_hit first_surface(const Scene& scene, const io::triangle_mesh& mesh, glm
         }
         bool front = glm::dot(hit->normal, dir) < 0.0f;
         segment_hit out;
-        out.hit = true, out.sample = front || double_sided, out.t = hit->t - margin;
+        out.hit = true, out.sample = front || double_sided, out.t = hit->t - margin, out.coverage = 1.0f;
         out.seen = {front ? hit->normal : -hit->normal, colour};
         return out;
     }
     return {};
 }
 
+// What the sampling rays of a table meet: the original triangles. (A coarser level's rays
+// meet the finer level's filtered voxels instead: appearance/resample.hpp.) Any type with
+// this first_surface does; the voxel space is the table's.
 template <class Scene>
-void sample_voxel(const Scene& scene, const io::triangle_mesh& mesh, glm::ivec3 voxel, const sampling_options& o,
-                  voxel_samples& out) {
+struct triangle_surfaces {
+    const Scene& scene;
+    const io::triangle_mesh& mesh;
+
+    segment_hit first_surface(glm::dvec3 origin, glm::dvec3 direction, double length) const {
+        return appearance::first_surface(scene, mesh, origin, direction, length);
+    }
+};
+
+template <class Surfaces>
+void sample_voxel(const Surfaces& surfaces, glm::ivec3 voxel, const sampling_options& o, voxel_samples& out) {
     out.seen.clear();
     out.outcomes.clear();
     out.rays = o.rays, out.hits = 0;
     for (std::uint32_t i = 0; i < o.rays; ++i) {
         sampling_ray ray = voxel_ray(voxel, i, o.rays, o.stratified, o.seed);
-        segment_hit h = first_surface(scene, mesh, ray.origin, ray.direction, ray.length);
+        segment_hit h = surfaces.first_surface(ray.origin, ray.direction, ray.length);
         out.hits += h.hit ? 1u : 0u;
         out.outcomes.push_back({glm::vec3(ray.direction), h.hit, h.sample ? std::int32_t(out.seen.size()) : -1});
         if (h.sample) out.seen.push_back(h.seen);

@@ -14,6 +14,7 @@ VX_STRUCT(vx_app_walk_result)
     uint visits;          /* voxels blended */
     uint steps;           /* the structure kernel's steps, over every re-entry */
     uint status;          /* VX_STATUS_HIT or _MISS for the first voxel, or VX_APP_WALK_NO_RECORD */
+    float nx, ny, nz;     /* normals blended like the colour */
 VX_END_STRUCT(vx_app_walk_result)
 
 VX_APP_FN vx_app_walk_result vx_app_walk_start(void) {
@@ -21,6 +22,7 @@ VX_APP_FN vx_app_walk_result vx_app_walk_start(void) {
     w.r = 0.0f, w.g = 0.0f, w.b = 0.0f, w.transmittance = 1.0f, w.t = VX_INF;
     w.x = 0, w.y = 0, w.z = 0, w.face = VX_FACE_NONE, w.material = 0u;
     w.visits = 0u, w.steps = 0u, w.status = VX_STATUS_MISS;
+    w.nx = 0.0f, w.ny = 0.0f, w.nz = 0.0f;
     return w;
 }
 

@@ -17,6 +17,6 @@
  *   index    appearance::ordinal_index(table) words; records: table.words; faces: table.faces
  *   kind     VX_APP_KIND_AVERAGES, _COMPACT, _SIX or _SGGX, as the table's record_kind
  *   (dx, dy, dz) the unit direction the ray travels; light: vx_app_light { lx, ly, lz, ambient }
- *   vx_app_sample { float r, g, b, a; }: linear colour and opacity; blend front to back.
+ *   vx_app_sample { float r, g, b, a, nx, ny, nz; }: linear colour, opacity, normal; blend front to back.
  * Build with -cl-std=CL1.2 -cl-fp32-correctly-rounded-divide-sqrt: divisions and square roots
  * then round as in C++, which keeps the values bit-identical to the C++ backends'. */

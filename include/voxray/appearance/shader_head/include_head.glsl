@@ -18,6 +18,6 @@
 //            (any valid address when the table has none), all by buffer device address
 //   kind     VX_APP_KIND_AVERAGES, _COMPACT, _SIX or _SGGX, as the table's record_kind
 //   (dx, dy, dz) the unit direction the ray travels; light: vx_app_light { lx, ly, lz, ambient }
-//   vx_app_sample { float r, g, b, a; }: linear colour and opacity; blend front to back.
+//   vx_app_sample { float r, g, b, a, nx, ny, nz; }: linear colour, opacity, normal; blend front to back.
 // The values are bit-identical to the C++ backends'. Compile with glslangValidator -V
 // --target-env vulkan1.2 -I<voxray prefix>/include.
