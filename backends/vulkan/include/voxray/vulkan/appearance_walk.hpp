@@ -1,13 +1,14 @@
 // The compositing walk (appearance/walk.inc) on a Vulkan device, for any structure kernel:
 // the module <structure>_appearance (voxray_add_appearance_walk) as one pipeline with push
 // constants only, like the trace shaders. The structure and its appearance table are
-// uploaded once; each walk sends rays and reads pixels. Same arguments and results as the
+// uploaded once; each walk sends rays and reads pixels through buffers it keeps (grow-only). Same arguments and results as the
 // CPU walker (cpu/appearance_walk.hpp): the pixels agree bit for bit (tests/appearance).
 //
 //   voxray::vulkan_appearance_walker<voxray::kernels::dense_grid_kernel> walker(blob, table);
 //   std::vector<voxray::appearance_pixel> out = walker.walk(rays, light);
 #pragma once
 #include <algorithm>
+#include <bit>
 #include <cstddef>
 #include <cstdint>
 #include <cstring>
@@ -29,6 +30,7 @@
 #include "voxray/vulkan/engine.hpp"
 #include "voxray/vulkan/options.hpp"
 #include "voxray/vulkan/pipeline.hpp"
+#include "voxray/vulkan/round_trip.hpp"
 
 namespace voxray::vulkan_detail {
 
@@ -68,6 +70,8 @@ public:
                                                                       std::uint32_t(sizeof(vulkan_detail::appearance_push)))),
           kind_(appearance::walk_words::kind_code(table.kind)),
           mapped_(!options.force_staging) {
+        VkDeviceSize most = std::min(ctx_->max_buffer(), ctx_->max_allocation());
+        slice_ = std::min<std::size_t>(slice_, std::max<VkDeviceSize>(most / sizeof(appearance_pixel), 1));
         appearance::walk_words words(table);
         blob_ = upload(std::as_bytes(blob), "structure blob");
         index_ = upload(std::as_bytes(std::span(words.index)), "ordinal index");
@@ -80,44 +84,43 @@ public:
 
     // Rays' directions must be unit vectors (records are evaluated for them).
     std::vector<appearance_pixel> walk(std::span<const ray> rays, const appearance_light& light) {
-        using namespace vulkan_detail;
         std::vector<appearance_pixel> out(rays.size());
-        if (rays.empty()) return out;
-        buffer in = upload(std::as_bytes(rays), "ray buffer");
-        VkDeviceSize bytes = out.size() * sizeof(appearance_pixel);
-        check_size(bytes, "pixel buffer");
-        buffer pixels(*ctx_, bytes, buffer_role::storage_readback, mapped_, "pixel buffer");
-        buffer staging;
-        if (!pixels.mapped()) staging = buffer(*ctx_, bytes, buffer_role::staging_readback, true, "pixel read-back");
-        VkCommandBuffer cmd = commands_->begin();
-        std::size_t per = std::size_t(ctx_->properties().limits.maxComputeWorkGroupCount[0]) * group_size;
-        for (std::size_t first = 0; first < rays.size(); first += per) {
-            std::size_t n = std::min(per, rays.size() - first);
-            appearance_push pc{blob_.address(), index_.address(), records_.address(), faces_.address(),
-                               in.address() + first * sizeof(ray), pixels.address() + first * sizeof(appearance_pixel),
-                               {light.to_light.x, light.to_light.y, light.to_light.z}, light.ambient, light.cutoff,
-                               light.max_visits, kind_, std::uint32_t(n)};
-            pipeline_->bind(cmd, pc);
-            vkCmdDispatch(cmd, std::uint32_t((n + group_size - 1) / group_size), 1, 1);
+        for (std::size_t first = 0; first < rays.size(); first += slice_) {
+            std::size_t n = std::min(slice_, rays.size() - first);
+            walk_slice(rays.subspan(first, n), std::span(out).subspan(first, n), light);
         }
-        if (staging.handle()) {
-            command_stream::barrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
-                                    VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_READ_BIT);
-            VkBufferCopy region{0, 0, bytes};
-            vkCmdCopyBuffer(cmd, pixels.handle(), staging.handle(), 1, &region);
-            command_stream::barrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT,
-                                    VK_PIPELINE_STAGE_HOST_BIT, VK_ACCESS_HOST_READ_BIT);
-        } else {
-            command_stream::barrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
-                                    VK_PIPELINE_STAGE_HOST_BIT, VK_ACCESS_HOST_READ_BIT);
-        }
-        commands_->submit_and_wait();
-        std::memcpy(out.data(), staging.handle() ? staging.mapped() : pixels.mapped(), bytes);
         appearance::check_walked(out);
         return out;
     }
 
 private:
+    // One submission: rays in, every dispatch, pixels out, through grow-only buffers.
+    void walk_slice(std::span<const ray> rays, std::span<appearance_pixel> out, const appearance_light& light) {
+        using namespace vulkan_detail;
+        if (io_.input_bytes() < rays.size_bytes()) {
+            std::size_t capacity = std::min(slice_, std::bit_ceil(rays.size()));
+            check_size(capacity * sizeof(appearance_pixel), "pixel buffer");
+            io_.reserve(*ctx_, capacity * sizeof(ray), capacity * sizeof(appearance_pixel), mapped_, "ray buffer",
+                        "pixel buffer");
+        }
+        VkCommandBuffer cmd = commands_->begin();
+        io_.write_inputs(cmd, rays.data(), rays.size_bytes());
+        std::size_t per = std::size_t(ctx_->properties().limits.maxComputeWorkGroupCount[0]) * group_size;
+        for (std::size_t first = 0; first < rays.size(); first += per) {
+            std::size_t n = std::min(per, rays.size() - first);
+            appearance_push pc{blob_.address(), index_.address(), records_.address(), faces_.address(),
+                               io_.input_address() + first * sizeof(ray),
+                               io_.output_address() + first * sizeof(appearance_pixel),
+                               {light.to_light.x, light.to_light.y, light.to_light.z}, light.ambient, light.cutoff,
+                               light.max_visits, kind_, std::uint32_t(n)};
+            pipeline_->bind(cmd, pc);
+            vkCmdDispatch(cmd, std::uint32_t((n + group_size - 1) / group_size), 1, 1);
+        }
+        io_.record_read_back(cmd, out.size_bytes());
+        commands_->submit_and_wait();
+        io_.read_outputs(out.data(), out.size_bytes());
+    }
+
     void check_size(VkDeviceSize bytes, const char* what) const {
         VkDeviceSize most = std::min(ctx_->max_buffer(), ctx_->max_allocation());
         if (bytes > most)
@@ -155,6 +158,10 @@ private:
     std::uint32_t kind_;
     bool mapped_;
     vulkan_detail::buffer blob_, index_, records_, faces_;
+    vulkan_detail::round_trip_buffers io_;  // rays in, pixels out
+    // Rays a submission: bounds the ray and pixel buffers (128 MiB of pixels at most, less
+    // where the device's buffers are smaller).
+    std::size_t slice_ = vulkan_detail::max_slice_rays;
 };
 
 }  // namespace voxray

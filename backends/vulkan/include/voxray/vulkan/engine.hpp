@@ -39,6 +39,7 @@
 #include "voxray/vulkan/options.hpp"
 #include "voxray/vulkan/passes.hpp"
 #include "voxray/vulkan/pipeline.hpp"
+#include "voxray/vulkan/round_trip.hpp"
 
 namespace voxray::vulkan_detail {
 
@@ -109,10 +110,7 @@ public:
         std::swap(committer_, o.committer_);
         std::swap(passes_, o.passes_);
         std::swap(blob_, o.blob_);
-        std::swap(rays_, o.rays_);
-        std::swap(hits_, o.hits_);
-        std::swap(rays_staging_, o.rays_staging_);
-        std::swap(hits_staging_, o.hits_staging_);
+        std::swap(io_, o.io_);
         std::swap(slice_, o.slice_);
         std::swap(group_size_, o.group_size_);
         std::swap(pipeline_seconds_, o.pipeline_seconds_);
@@ -285,8 +283,7 @@ public:
     // True when some buffer is reached through staging copies (discrete GPUs, or
     // vulkan_options::force_staging) rather than mapped directly.
     bool uses_staging() const {
-        return (blob_.handle() && !blob_.mapped()) || (rays_.handle() && !rays_.mapped()) ||
-               (hits_.handle() && !hits_.mapped());
+        return (blob_.handle() && !blob_.mapped()) || io_.uses_staging();
     }
     // Device seconds the dispatches of the last trace() took, copies of rays and hits left
     // out (GPU timestamps); NaN where the queue has none.
@@ -300,63 +297,23 @@ private:
 
     // Grow-only ray/hit buffers (and their staging twins where they are not mapped).
     void reserve(std::size_t count) {
-        if (rays_.size() >= count * sizeof(ray)) return;
+        if (io_.input_bytes() >= count * sizeof(ray)) return;
         std::size_t capacity = std::min(slice_, std::bit_ceil(count));
-        VkDeviceSize bytes = capacity * sizeof(ray);
-        bool mapped = !options_.force_staging;
-        // Free the old buffers before allocating the new ones.
-        rays_ = buffer();
-        hits_ = buffer();
-        rays_staging_ = buffer();
-        hits_staging_ = buffer();
-        try {
-            rays_ = buffer(*ctx_, bytes, buffer_role::storage_upload, mapped, "ray buffer");
-            hits_ = buffer(*ctx_, bytes, buffer_role::storage_readback, mapped, "hit buffer");
-            if (!rays_.mapped())
-                rays_staging_ = buffer(*ctx_, bytes, buffer_role::staging_upload, true, "ray staging buffer");
-            if (!hits_.mapped())
-                hits_staging_ = buffer(*ctx_, bytes, buffer_role::staging_readback, true, "hit staging buffer");
-        } catch (...) {
-            // All or nothing: a ray buffer without its hit buffer must not look ready.
-            rays_ = buffer();
-            hits_ = buffer();
-            rays_staging_ = buffer();
-            hits_staging_ = buffer();
-            throw;
-        }
+        io_.reserve(*ctx_, capacity * sizeof(ray), capacity * sizeof(hit), !options_.force_staging, "ray buffer",
+                    "hit buffer");
     }
 
     void trace_slice(std::span<const ray> rays, std::span<hit> hits, std::uint32_t mode) {
         reserve(rays.size());
-        VkDeviceSize bytes = rays.size_bytes();
-        std::memcpy(rays_.mapped() ? rays_.mapped() : rays_staging_.mapped(), rays.data(), bytes);
-
         VkCommandBuffer cmd = commands_->begin();
-        if (!rays_.mapped()) {
-            VkBufferCopy region{0, 0, bytes};
-            vkCmdCopyBuffer(cmd, rays_staging_.handle(), rays_.handle(), 1, &region);
-            command_stream::barrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT,
-                                    VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_READ_BIT);
-        }
+        io_.write_inputs(cmd, rays.data(), rays.size_bytes());
         timer_->start(cmd);
-        record_dispatches(cmd, rays_.address(), hits_.address(), rays.size(), mode);
+        record_dispatches(cmd, io_.input_address(), io_.output_address(), rays.size(), mode);
         timer_->stop(cmd);
-        // The host may read the hits only after a barrier that makes shader writes
-        // visible to it (directly, or after the copy into the staging buffer).
-        if (hits_.mapped()) {
-            command_stream::barrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
-                                    VK_PIPELINE_STAGE_HOST_BIT, VK_ACCESS_HOST_READ_BIT);
-        } else {
-            command_stream::barrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
-                                    VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_READ_BIT);
-            VkBufferCopy region{0, 0, bytes};
-            vkCmdCopyBuffer(cmd, hits_.handle(), hits_staging_.handle(), 1, &region);
-            command_stream::barrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT,
-                                    VK_PIPELINE_STAGE_HOST_BIT, VK_ACCESS_HOST_READ_BIT);
-        }
+        io_.record_read_back(cmd, hits.size_bytes());
         commands_->submit_and_wait();
         kernel_seconds_ += timer_->seconds();
-        std::memcpy(hits.data(), hits_.mapped() ? hits_.mapped() : hits_staging_.mapped(), bytes);
+        io_.read_outputs(hits.data(), hits.size_bytes());
     }
 
     // One dispatch per maxComputeWorkGroupCount groups; the addresses advance between them.
@@ -386,7 +343,8 @@ private:
     std::unique_ptr<compute_pipeline> closest_, any_;  // one pipeline per trace mode, one module
     committer committer_;
     pass_runner passes_;
-    buffer blob_, rays_, hits_, rays_staging_, hits_staging_;
+    buffer blob_;
+    round_trip_buffers io_;  // rays in, hits out
     std::size_t slice_ = max_slice_rays;
     std::uint32_t group_size_ = group_size;  // invocations per workgroup of the trace pipelines
     double pipeline_seconds_ = 0;
