@@ -122,7 +122,8 @@ VX_APP_FN vx_app_vec vx_app_face_node(vx_app_vec n, float spread, uint q) {
  * shaded at four fixed quadrature nodes of equal weight (the mean normal and its ring), each
  * node weighted by the area it turns to the viewer, max(0, -n . d), and the face by its share
  * of the surface; side -1 takes the normals turned round (the faces seen from behind). Returns
- * the weighted colour sum in r, g, b and the sum of the weights in a. */
+ * the weighted colour sum in r, g, b, the sum of the weights in a, and the faces' mean
+ * normals (as `side` turns them) weighted alike in n. */
 VX_APP_FN vx_app_sample vx_app_compact_faces(VX_BLOB faces, uint first, uint count, float dx, float dy, float dz,
                                              vx_app_light light, float side) {
     vx_app_sample sum = vx_app_no_sample();
