@@ -135,8 +135,8 @@ walk_structure build_structure(const std::string& name, const voxel_model& model
     return {name, words(dense_grid(model).blob())};
 }
 
-// Ours at the resolution of `coarse_grid`, re-sampled through the walk from ours at twice it
-// (made from the triangles there): a LOD level as a chain builds it. Its voxels are the
+// Ours at `resolution`, re-sampled through the walk from ours at twice it (made from the
+// triangles there): a LOD level as a chain builds it. Its voxels are the
 // finer level's coarser_voxels, so it has a structure of its own (`structure`).
 method_table resampled_method(const io::triangle_mesh& mesh, int resolution, const std::string& structure_name,
                               unsigned threads, walk_structure& structure) {

@@ -1,8 +1,9 @@
 // The compositing walk (appearance/walk.inc) on a Vulkan device, for any structure kernel:
 // the module <structure>_appearance (voxray_add_appearance_walk) as one pipeline with push
 // constants only, like the trace shaders. The structure and its appearance table are
-// uploaded once; each walk sends rays and reads pixels through buffers it keeps (grow-only). Same arguments and results as the
-// CPU walker (cpu/appearance_walk.hpp): the pixels agree bit for bit (tests/appearance).
+// uploaded once; each walk sends rays and reads pixels through buffers it keeps (grow-only,
+// vulkan/round_trip.hpp). Same arguments and results as the CPU walker
+// (cpu/appearance_walk.hpp): the pixels agree bit for bit (tests/appearance).
 //
 //   voxray::vulkan_appearance_walker<voxray::kernels::dense_grid_kernel> walker(blob, table);
 //   std::vector<voxray::appearance_pixel> out = walker.walk(rays, light);
