@@ -58,7 +58,11 @@ asan_pass() {
     local dir=${ASAN_DIR:-$BUILD_DIR-asan} start=$SECONDS
     echo "== AddressSanitizer + UBSan, every backend ($dir)"
     local ASAN_LABELS="${CPU_LABELS%)\$}|opencl|vulkan)\$"
-    cmake -S "$ROOT" -B "$dir" "${SANITIZED[@]}" -DVOXRAY_SANITIZE=address -DVOXRAY_REQUIRE_ALL_BACKENDS=ON \
+    # No debug info at all (-g0): g++ then compiles these tests in about 60 % of the time
+    # (io_tests: 38 s -> 23 s), and a report still names every function of its stack (the
+    # symbol table); rebuild with -g1 to see its lines.
+    cmake -S "$ROOT" -B "$dir" "${SANITIZED[@]}" "-DCMAKE_CXX_FLAGS_RELWITHDEBINFO=-O1 -g0 -DNDEBUG" \
+        -DVOXRAY_SANITIZE=address -DVOXRAY_REQUIRE_ALL_BACKENDS=ON \
         "-DVOXRAY_TEST_LABELS=$ASAN_LABELS" >/dev/null
     cmake --build "$dir" -j"$(nproc)"
     # Lavapipe (mesa 22.3.6-1+deb12u2) loses 128 bytes per VkInstance, and the Vulkan loader unloads

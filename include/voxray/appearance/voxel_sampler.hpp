@@ -100,6 +100,9 @@ struct triangle_surfaces {
         return appearance::first_surface(scene, mesh, origin, direction, length);
     }
 };
+// Spelled out for compilers without deduction for aggregates (clang before 17).
+template <class Scene>
+triangle_surfaces(const Scene&, const io::triangle_mesh&) -> triangle_surfaces<Scene>;
 
 template <class Surfaces>
 void sample_voxel(const Surfaces& surfaces, glm::ivec3 voxel, const sampling_options& o, voxel_samples& out) {

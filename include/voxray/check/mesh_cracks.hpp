@@ -126,7 +126,8 @@ inline morph_cases find_morph_cases(const std::vector<meshing::chunk_mesh>& mesh
             }
     }
     for (auto& [p, list] : corners) {
-        bool two_chunks = std::any_of(list.begin(), list.end(), [&](auto& e) { return std::get<0>(e) != std::get<0>(list[0]); });
+        const auto first_chunk = std::get<0>(list[0]);  // a copy: clang 14 cannot capture a structured binding
+        bool two_chunks = std::any_of(list.begin(), list.end(), [&](auto& e) { return std::get<0>(e) != first_chunk; });
         if (two_chunks) cases.shared.push_back(list);
     }
     for (auto& lines : on_line)

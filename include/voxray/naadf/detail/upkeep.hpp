@@ -112,9 +112,13 @@ VOXRAY_HOST_INLINE void naadf::regrid(const box3i& world) {
         return p.x + std::uint64_t(next.pages.x) * (p.y + std::uint64_t(next.pages.y) * p.z);
     };
     // Old fields stay valid (the new pages are empty) but are capped at the old table's
-    // edges: refine() grows them across the new space.
-    for (std::uint64_t slot = 0; slot < old.size(); ++slot) table[new_slot(slot)] = old[slot];
-    for (auto& page : stale_) page.slot = new_slot(page.slot);
+    // edges: refine() grows them across the new space. An empty world's one page is empty
+    // and placed nowhere: its origin need not lie inside the new grid (clang's UBSan caught
+    // the negative slot it got).
+    if (!grid_.bounds.empty()) {
+        for (std::uint64_t slot = 0; slot < old.size(); ++slot) table[new_slot(slot)] = old[slot];
+        for (auto& page : stale_) page.slot = new_slot(page.slot);
+    }
     stale_at_.assign(next.page_count, 0);
     for (std::size_t i = 0; i < stale_.size(); ++i) stale_at_[stale_[i].slot] = std::uint32_t(i + 1);
     touched_flag_.assign(next.page_count, 0);
