@@ -6,8 +6,10 @@
 # (reference | averages | sggx | six | faithful | ours | ours_lod) into the build folder, then the table
 # (docs/bench/appearance_table.md, also in docs/appearance.md) with every metric checked
 # against scikit-image's on the strips, and keeps view 0's strips in docs/bench/appearance/.
-# About 25 minutes on 2 shared cores.
-# Override SCENES (space-separated), RESOLUTIONS, REFERENCE_SIDE (16: 256 samples a pixel).
+# Then the same with cast shadows (--shadows) on two scenes at 128^3: appearance_shadows.*.
+# About 30 minutes on 2 shared cores.
+# Override SCENES (space-separated), RESOLUTIONS, REFERENCE_SIDE (16: 256 samples a pixel),
+# SHADOW_SCENES, PARTS ("plain shadows": which of the two to run).
 set -euo pipefail
 source "$(dirname "${BASH_SOURCE[0]}")/setup.sh"
 DATA="${VOXRAY_DATA_DIR:-$ROOT/../shared/data}"
@@ -25,22 +27,42 @@ TOOL="$(realpath -m --relative-to="$ROOT" "$BUILD_DIR")/voxray" OUT=docs/bench
 echo "== configure and build the tool ($BUILD_DIR)"
 cmake -S "$ROOT" -B "$BUILD_DIR" -DCMAKE_BUILD_TYPE=Release ${CMAKE_EXTRA:-} >/dev/null
 cmake --build "$BUILD_DIR" -j"$(nproc)" --target voxray_tool
-STRIPS="$(realpath -m --relative-to="$ROOT" "$BUILD_DIR")/appearance_strips"  # relative: recorded in the results
-rm -rf "$OUT/appearance_results.jsonl" "$STRIPS" "$OUT/appearance"
-mkdir -p "$STRIPS" "$OUT/appearance"
-for resolution in ${RESOLUTIONS:-128 256}; do
-    for scene in "${scenes[@]}"; do
-        echo "== appearance-bench $scene at $resolution"
-        part="$OUT/appearance_part.jsonl"  # relative: the header records the command line
-        "$TOOL" appearance-bench "$scene" --resolution "$resolution" --views 3 --threads 2 \
-            --reference-side "${REFERENCE_SIDE:-16}" --lod --json "$part" --images "$STRIPS"
-        # One results file: the first header, then every run's rows.
-        if [ -s "$OUT/appearance_results.jsonl" ]; then tail -n +2 "$part" >> "$OUT/appearance_results.jsonl"
-        else cp "$part" "$OUT/appearance_results.jsonl"; fi
-        rm -f "$part"
+# run_matrix NAME FLAGS RESOLUTIONS SCENE...: docs/bench/NAME_results.jsonl, its strips in the build
+# folder, its table (docs/bench/NAME_table.md, also in docs/appearance.md between the
+# NAME markers), view 0's strips in docs/bench/NAME/.
+run_matrix() {
+    local name=$1 flags=$2 resolutions=$3
+    shift 3
+    local strips results="$OUT/${name}_results.jsonl"
+    strips="$(realpath -m --relative-to="$ROOT" "$BUILD_DIR")/${name}_strips"  # relative: recorded in the results
+    rm -rf "$results" "$strips" "${OUT:?}/$name"
+    mkdir -p "$strips" "$OUT/$name"
+    for resolution in $resolutions; do
+        for scene in "$@"; do
+            echo "== appearance-bench $scene at $resolution $flags"
+            part="$OUT/${name}_part.jsonl"  # relative: the header records the command line
+            # shellcheck disable=SC2086  # flags: several words
+            "$TOOL" appearance-bench "$scene" --resolution "$resolution" --views 3 --threads 2 \
+                --reference-side "${REFERENCE_SIDE:-16}" $flags --json "$part" --images "$strips"
+            # One results file: the first header, then every run's rows.
+            if [ -s "$results" ]; then tail -n +2 "$part" >> "$results"; else cp "$part" "$results"; fi
+            rm -f "$part"
+        done
     done
-done
-echo "== table"
-/usr/bin/python3 scripts/appearance_table.py "$OUT/appearance_results.jsonl" --strips "$STRIPS" \
-    --out "$OUT/appearance_table.md" --doc docs/appearance.md
-cp "$STRIPS"/*_view0_*.png "$OUT/appearance/"
+    echo "== table ($name)"
+    /usr/bin/python3 scripts/appearance_table.py "$results" --strips "$strips" \
+        --out "$OUT/${name}_table.md" --doc docs/appearance.md --marker "$name"
+    cp "$strips"/*_view0_*.png "$OUT/$name/"
+}
+
+# PARTS: which matrices (both by default).
+if [[ " ${PARTS:-plain shadows} " == *" plain "* ]]; then
+    run_matrix appearance "--lod" "${RESOLUTIONS:-128 256}" "${scenes[@]}"
+fi
+# Cast shadows (--shadows): two scenes at 128^3, the bunny (a solid, self-shadowing) and the
+# small tree (foliage, partial shadows), about 4 minutes.
+if [[ " ${PARTS:-plain shadows} " == *" shadows "* ]]; then
+    SCENES="${SHADOW_SCENES:-$DATA/mesh/stanford_bunny.ply $DATA/mesh/small_tree/scene.gltf}"
+    relative_scenes
+    run_matrix appearance_shadows "--shadows" "128" "${scenes[@]}"
+fi

@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """The quality table of appearance-bench results, each metric checked with scikit-image.
 
-appearance_table.py RESULTS --strips FOLDER --out TABLE.md [--doc DOC.md]
+appearance_table.py RESULTS --strips FOLDER --out TABLE.md [--doc DOC.md [--marker NAME]]
   RESULTS    appearance-bench JSON lines (a header, then one row per method, view and light)
   FOLDER     the strips the bench wrote (reference | averages | sggx | six | faithful | ours [| ours_lod], side by
              side): MSE and
@@ -12,7 +12,8 @@ appearance_table.py RESULTS --strips FOLDER --out TABLE.md [--doc DOC.md]
              foreground MSE, SSIM, bytes a voxel and precompute time, and the issue's targets
              (ours: MSE at most half of averages', SSIM at least averages' + 0.03; ours_lod, ours
              re-sampled from twice the resolution: MSE at most 1.10 x ours', SSIM at least ours' - 0.01)
-  --doc      also put the table between <!-- appearance-table:begin --> and :end --> of DOC.md
+  --doc      also put the table between <!-- NAME-table:begin --> and :end --> of DOC.md
+  --marker   NAME (default: appearance)
 """
 import argparse
 import json
@@ -91,12 +92,14 @@ def table(header, rows, agreement):
             out.append("| %s at %d³ | %d | %s | %.5f | %.5f | %.4f | %.1f | %.1f | %.2f | %.2f | %s |" % (
                 scene, res, methods[m][0]["voxels"], m, v["mse"], v["mse_foreground"], v["ssim"], v["bytes_per_voxel"],
                 v["precompute_us_per_voxel"], v["walk_fps"], v["visits_per_ray"], verdict))
+    shadows = ("cast shadows in the reference, precomputed shadows (one ray a voxel) in every method but six "
+               "directions (lit when made, unshadowed)" if any(r.get("shadows") for r in rows) else "no shadows")
     out += ["", "Means over %d views × 2 lights (front, behind); reference: Embree on the triangles at %d samples a "
-            "pixel, the same shading, no shadows. Targets: ours against averages; ours_lod (ours at N re-sampled "
+            "pixel, the same shading, %s. Targets: ours against averages; ours_lod (ours at N re-sampled "
             "through the walk from ours at 2N, its precompute time the re-sampling's alone) against ours. "
             "%d target cells missed. Every MSE and SSIM was recomputed from the "
             "strips with scikit-image (largest differences: MSE %.1g, SSIM %.1g). Machine: %s; commit %s."
-            % (len({r["view"] for r in rows}), rows[0]["reference_spp"], missed, agreement[0], agreement[1],
+            % (len({r["view"] for r in rows}), rows[0]["reference_spp"], shadows, missed, agreement[0], agreement[1],
                header.get("machine", {}).get("cpu_model", "?"), header.get("git_commit", "?")[:10])]
     return "\n".join(out) + "\n"
 
@@ -107,16 +110,18 @@ def main():
     p.add_argument("--strips", required=True)
     p.add_argument("--out", required=True)
     p.add_argument("--doc")
+    p.add_argument("--marker", default="appearance")
     a = p.parse_args()
     header, rows = load(a.results)
     text = table(header, rows, check_with_skimage(rows, pathlib.Path(a.strips)))
     pathlib.Path(a.out).write_text(text)
     if a.doc:
         doc = pathlib.Path(a.doc).read_text()
-        marked = re.sub(r"(<!-- appearance-table:begin -->\n).*?(<!-- appearance-table:end -->)",
+        begin, end = "<!-- %s-table:begin -->" % a.marker, "<!-- %s-table:end -->" % a.marker
+        marked = re.sub("(%s\n).*?(%s)" % (re.escape(begin), re.escape(end)),
                         lambda m: m.group(1) + text + m.group(2), doc, flags=re.S)
-        if marked == doc and "<!-- appearance-table:begin -->" not in doc:
-            sys.exit("appearance_table.py: %s has no appearance-table markers" % a.doc)
+        if marked == doc and begin not in doc:
+            sys.exit("appearance_table.py: %s has no %s-table markers" % (a.doc, a.marker))
         pathlib.Path(a.doc).write_text(marked)
     print(text)
 

@@ -81,7 +81,8 @@ TEST(appearance_bad_input, table_files_that_are_wrong_name_the_offset_and_the_va
         write_bytes(p, b);
         return error_of([&] { load_table(p); });
     };
-    EXPECT_NE(load_edited([](auto& b) { b[4] = 2; }).find("offset 4: unsupported version 2"), std::string::npos);
+    EXPECT_NE(load_edited([](auto& b) { b[4] = 3; }).find("offset 4: unsupported version 3"), std::string::npos);
+    EXPECT_NE(load_edited([](auto& b) { b[44] = 1; }).find("offset 44: reserved word is 1"), std::string::npos);
     EXPECT_NE(load_edited([](auto& b) { b[0] = 'X'; }).find("offset 0: bad magic"), std::string::npos);
     EXPECT_NE(load_edited([](auto& b) { b.resize(b.size() - 4); }).find("offset 16: file is"), std::string::npos);
     EXPECT_NE(load_edited([](auto& b) { b.resize(20); }).find("truncated"), std::string::npos);

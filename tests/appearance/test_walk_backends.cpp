@@ -10,6 +10,7 @@
 
 #include "test_data.hpp"
 #include "voxray/appearance/precompute.hpp"
+#include "voxray/appearance/shadows.hpp"
 #include "voxray/cpu.hpp"
 #include "voxray/cpu/appearance_walk.hpp"
 #include "voxray/dense_grid/dense_grid.hpp"
@@ -45,6 +46,8 @@ std::string first_difference(const std::vector<appearance_pixel>& want, const st
     return "";
 }
 
+const appearance_light kitchen_light{.to_light = glm::normalize(glm::vec3(0.3f, 1.0f, 0.5f)), .ambient = 0.2f};
+
 struct walk_scene {
     voxel_model model;
     std::vector<std::pair<std::string, appearance_table>> tables;  // every record kind, and opaque records
@@ -64,6 +67,11 @@ const walk_scene& kitchen() {
                                   {"faithful", record_kind::faithful}})
             s.tables.emplace_back(name, appearance::precompute(triangles, mesh, s.model, {.kind = kind, .threads = 2}));
         s.tables.emplace_back("opaque", test::uniform_table(s.model, 15));
+        appearance_table shadowed = s.tables[1].second;  // compact, with shadows of the test's light
+        dense_grid grid(s.model);
+        appearance_walker<kernels::dense_grid_kernel> walker({grid.blob().begin(), grid.blob().end()}, shadowed, 2);
+        appearance::precompute_shadows(walker, shadowed, kitchen_light.to_light);
+        s.tables.emplace_back("shadowed compact", std::move(shadowed));
         s.rays = test::camera_rays(s.model, 40);
         return s;
     }();
@@ -73,7 +81,7 @@ const walk_scene& kitchen() {
 TEST(appearance_walk_backends, every_backend_gives_the_same_pixels_bit_for_bit) {
     VOXRAY_REQUIRE_DATA();
     const walk_scene& s = kitchen();
-    appearance_light light{.to_light = glm::normalize(glm::vec3(0.3f, 1.0f, 0.5f)), .ambient = 0.2f};
+    const appearance_light& light = kitchen_light;
     for_each_type(registered::structures{}, [&]<class S>() {
         using kernel = typename S::kernel;
         S structure(s.model);

@@ -5,6 +5,8 @@
 // samples a pixel) and every method's picture by the compositing walk (4 rays a pixel):
 // averages, SGGX, six directions (made for each light) and ours (the compact record), and
 // with --lod ours re-sampled from the level at twice the resolution (appearance/resample.hpp),
+// and with --shadows cast shadows in the reference and precomputed ones (appearance/shadows.hpp)
+// in every method's walk but six directions' (lit when made),
 // compared in sRGB: MSE (all pixels, and the pixels the reference covers), PSNR and SSIM
 // (scikit-image's parameters, per channel; scripts/appearance_table.py checks them with
 // scikit-image itself). One JSON line per method, view and light after a header line.
@@ -29,6 +31,7 @@
 #include "appearance_reference.hpp"
 #include "voxray/appearance/precompute.hpp"
 #include "voxray/appearance/resample.hpp"
+#include "voxray/appearance/shadows.hpp"
 #include "voxray/cpu/appearance_walk.hpp"
 #include "voxray/brickmap/brickmap.hpp"
 #include "voxray/dense_grid/dense_grid.hpp"
@@ -50,6 +53,7 @@ struct appearance_bench_options {
     unsigned threads = 2;
     std::string structure = "dense";  // whose first-hit kernel the walk re-enters
     bool lod = false;                  // also ours re-sampled from the level at twice the resolution
+    bool shadows = false;              // cast shadows in the reference, precomputed ones in the walks
     std::string json, images;
 };
 
@@ -105,12 +109,13 @@ struct method_table {
     std::string name;
     appearance::appearance_table table;
     appearance::precompute_stats stats;
+    double shadow_us_per_voxel = 0;  // the precomputed shadows' time, where it has them
 };
 
 method_table precompute_method(const embree::triangle_scene& scene, const io::triangle_mesh& mesh,
                                const voxel_model& model, const char* name, appearance::record_kind kind,
                                const shading& light, unsigned threads) {
-    method_table m{name, {}, {}};
+    method_table m{name, {}, {}, 0};
     m.table = appearance::precompute(
         scene, mesh, model,
         {.kind = kind, .sampling = {}, .threads = threads, .light = {light.to_light, light.ambient}}, &m.stats);
@@ -149,9 +154,30 @@ method_table resampled_method(const io::triangle_mesh& mesh, int resolution, con
                                                          fine_table, 1);
     voxel_model coarse = appearance::coarser_voxels(fine);
     structure = build_structure(structure_name, coarse);
-    method_table m{"ours_lod", {}, {}};
+    method_table m{"ours_lod", {}, {}, 0};
     m.table = appearance::resample(walker, coarse, o, &m.stats);
     return m;
+}
+
+// Calls f.template operator()<Kernel>() with the kernel of structure `name` (walk_structures).
+template <class F>
+decltype(auto) with_kernel(const std::string& name, F&& f) {
+    if (name == "naadf") return f.template operator()<kernels::naadf_kernel>();
+    if (name == "brickmap") return f.template operator()<kernels::brickmap_kernel>();
+    return f.template operator()<kernels::dense_grid_kernel>();
+}
+
+// `m` with precomputed shadows of `light`, walked over `s`; the time goes to m.stats'
+// shadow_seconds.
+method_table with_shadows(const walk_structure& s, const method_table& m, const shading& light, unsigned threads) {
+    method_table shadowed = m;
+    appearance::precompute_stats stats;
+    with_kernel(s.name, [&]<class Kernel>() {
+        appearance_walker<Kernel> walker(s.blob, m.table, threads);
+        appearance::precompute_shadows(walker, shadowed.table, light.to_light, {.threads = threads}, &stats);
+    });
+    shadowed.shadow_us_per_voxel = stats.us_per_voxel();
+    return shadowed;
 }
 
 // The walk of `rays` over `blob`; `seconds` gets the walk's time alone, without setting up
@@ -171,10 +197,9 @@ std::vector<appearance_pixel> walk_rays(const std::vector<std::uint32_t>& blob, 
 walked_picture walk_picture(const walk_structure& s, const method_table& m, const std::vector<ray>& rays,
                             const shading& light, int size, unsigned threads) {
     walked_picture w;
-    std::vector<appearance_pixel> px =
-        s.name == "naadf"      ? walk_rays<kernels::naadf_kernel>(s.blob, m, rays, light, threads, w.seconds)
-        : s.name == "brickmap" ? walk_rays<kernels::brickmap_kernel>(s.blob, m, rays, light, threads, w.seconds)
-                               : walk_rays<kernels::dense_grid_kernel>(s.blob, m, rays, light, threads, w.seconds);
+    std::vector<appearance_pixel> px = with_kernel(s.name, [&]<class Kernel>() {
+        return walk_rays<Kernel>(s.blob, m, rays, light, threads, w.seconds);
+    });
     w.picture = {size, size, std::vector<glm::vec3>(std::size_t(size) * std::size_t(size), glm::vec3(0.0f)), {}};
     for (std::size_t i = 0; i < px.size(); ++i) {
         glm::vec3 c = glm::vec3(px[i].r, px[i].g, px[i].b) + px[i].transmittance * light.background;
@@ -230,7 +255,8 @@ int appearance_bench(const appearance_bench_options& o) {
     for (int view = 0; view < o.views; ++view) {
         camera cam = auto_camera(model.bounds(), model.up_axis, view * 8 / o.views);
         std::vector<shading> lights;
-        for (bool front : {true, false}) lights.push_back({light_direction(cam, front), 0.2f, glm::vec3(0.2f)});
+        for (bool front : {true, false})
+            lights.push_back({light_direction(cam, front), 0.2f, glm::vec3(0.2f), o.shadows});
         auto reference = reference_pictures(scene, mesh, cam, size, size, o.reference_side, lights, o.threads);
         camera_frame frame(cam, size, size);
         std::vector<ray> rays;  // 4 a pixel, at the centres of its 2 x 2 strata
@@ -248,9 +274,13 @@ int appearance_bench(const appearance_bench_options& o) {
             std::vector<const method_table*> methods{&averages, &sggx, &six, &faithful, &ours};  // the strip's order
             if (ours_lod) methods.push_back(&*ours_lod);
             for (const method_table* method : methods) {
-                const method_table& m = *method;
                 const bool lod = ours_lod && method == &*ours_lod;
-                walked_picture w = walk_picture(lod ? lod_structure : structure, m, rays, lights[l], size, o.threads);
+                const walk_structure& walked = lod ? lod_structure : structure;
+                const bool shadowed = o.shadows && method != &six;  // six is lit when made
+                std::optional<method_table> with;
+                if (shadowed) with = with_shadows(walked, *method, lights[l], o.threads);
+                const method_table& m = with ? *with : *method;
+                walked_picture w = walk_picture(walked, m, rays, lights[l], size, o.threads);
                 std::vector<std::uint8_t> got8 = srgb8(w.picture);
                 picture_errors e = compare(ref8, got8, reference[l].coverage, size, size);
                 std::printf("%-24s %4d %4d %-6s %-9s %9.5f %9.5f %7.2f %7.4f %7.1f %9.1f %9.2f\n", scene_name.c_str(),
@@ -261,6 +291,8 @@ int appearance_bench(const appearance_bench_options& o) {
                     out->stream() << nlohmann::json{{"scene", scene_name}, {"resolution", o.resolution}, {"size", size},
                                                     {"lod_from", lod ? 2 * o.resolution : 0},
                                                     {"view", view}, {"light", light_name}, {"method", m.name},
+                                                    {"shadows", shadowed},
+                                                    {"shadow_us_per_voxel", m.shadow_us_per_voxel},
                                                     {"mse", e.mse}, {"mse_foreground", e.mse_foreground},
                                                     {"psnr", e.psnr}, {"ssim", e.ssim},
                                                     {"bytes_per_voxel", m.table.bytes_per_voxel()},
@@ -315,6 +347,8 @@ command add_appearance_bench(CLI::App& parent) {
     app->add_option("--structure", o->structure, "the structure whose first-hit kernel the walk re-enters")
         ->check(CLI::IsMember(walk_structures))
         ->capture_default_str();
+    app->add_flag("--shadows", o->shadows,
+                  "cast shadows: in the reference, and precomputed for each light in every method but six");
     app->add_flag("--lod", o->lod,
                   "also ours_lod: ours re-sampled through the walk from ours at twice the resolution (a LOD level)");
     app->add_option("--json", o->json, "write one JSON line per method, view and light after a header line");

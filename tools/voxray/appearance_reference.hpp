@@ -2,8 +2,9 @@
 // many stratified samples a pixel, shaded as the appearance records are (appearance/record.h):
 // colour * (ambient + (1 - ambient) * max(0, n . l)), with the normal turned to the viewer on
 // double-sided materials, black on the back of one-sided ones, and the background where a
-// ray meets nothing. Cut-outs let rays through, as in the precompute. No shadows, on
-// either side of the comparison.
+// ray meets nothing. Cut-outs let rays through, as in the precompute. With `shadows`, a
+// point whose shadow ray towards the light meets a triangle (cut-outs let it through) gets
+// the ambient alone: the truth the precomputed shadows (appearance/shadows.hpp) approximate.
 #pragma once
 #include <cmath>
 #include <cstdint>
@@ -22,6 +23,7 @@ struct shading {
     glm::vec3 to_light{0, 1, 0};  // unit
     float ambient = 0.2f;
     glm::vec3 background{0.2f};   // linear
+    bool shadows = false;         // cast shadows (the methods then walk precomputed ones)
 };
 
 // A linear RGB picture, and the share of each pixel's samples that met a surface.
@@ -31,10 +33,18 @@ struct linear_picture {
     std::vector<float> coverage;
 };
 
-inline glm::vec3 shade_surface(const appearance::segment_hit& h, const shading& s) {
+// The colour seen at `h`, the first surface along a ray from `origin` in `direction`.
+template <class Scene>
+glm::vec3 shade_surface(const Scene& scene, const io::triangle_mesh& mesh, const appearance::segment_hit& h,
+                        const ray& r, const shading& s) {
     if (!h.hit) return s.background;
     if (!h.sample) return glm::vec3(0.0f);
     float lambert = std::max(glm::dot(h.seen.normal, s.to_light), 0.0f);
+    if (s.shadows && lambert > 0.0f) {
+        // From a thousandth of a voxel off the surface, on the side the light and the viewer are.
+        glm::vec3 at = r.origin + h.t * r.direction + 1e-3f * h.seen.normal;
+        if (appearance::first_surface(scene, mesh, glm::dvec3(at), glm::dvec3(s.to_light), 1e7).hit) lambert = 0.0f;
+    }
     return glm::vec3(h.seen.colour) * (s.ambient + (1.0f - s.ambient) * lambert);
 }
 
@@ -65,7 +75,8 @@ std::vector<linear_picture> reference_pictures(const Scene& scene, const io::tri
                         appearance::segment_hit h =
                             appearance::first_surface(scene, mesh, glm::dvec3(r.origin), glm::dvec3(r.direction), 1e7);
                         hits += h.hit ? 1u : 0u;
-                        for (std::size_t l = 0; l < lights.size(); ++l) out[l].rgb[i] += shade_surface(h, lights[l]);
+                        for (std::size_t l = 0; l < lights.size(); ++l)
+                            out[l].rgb[i] += shade_surface(scene, mesh, h, r, lights[l]);
                     }
                 for (auto& p : out) p.rgb[i] /= float(side * side);
                 coverage[i] = float(hits) / float(side * side);

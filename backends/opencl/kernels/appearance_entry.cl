@@ -8,10 +8,10 @@ __kernel void vx_appearance_walk(__global const uint* blob, __global const uint*
                                  __global const uint* records, __global const uint* faces,
                                  __global const vx_ray* rays, __global vx_app_walk_result* pixels, uint count,
                                  uint kind, float to_light_x, float to_light_y, float to_light_z, float ambient,
-                                 float cutoff, uint max_visits) {
+                                 float cutoff, uint max_visits, uint shadows_at) {
     size_t i = get_global_id(0);
     if (i >= count) return;
     vx_app_light light;
     light.lx = to_light_x, light.ly = to_light_y, light.lz = to_light_z, light.ambient = ambient;
-    pixels[i] = vx_app_walk(blob, index, records, faces, kind, rays[i], light, cutoff, max_visits);
+    pixels[i] = vx_app_walk(blob, index, records, faces, kind, rays[i], light, cutoff, max_visits, shadows_at);
 }

@@ -11,7 +11,8 @@ layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer vx
 layout(buffer_reference, std430, buffer_reference_align = 4) writeonly buffer vx_app_pixels { vx_app_walk_result p[]; };
 
 // Must match voxray::vulkan_detail::appearance_push (vulkan/appearance_walk.hpp): six
-// addresses at bytes 0..40, the light at 48, then cutoff, max_visits, kind and count.
+// addresses at bytes 0..40, the light at 48, then cutoff, max_visits, kind, count and
+// shadows_at.
 layout(push_constant, std430) uniform vx_app_push {
     uvec2 blob;     // structure words
     uvec2 index;    // ordinal index (appearance/ordinal_layout.h)
@@ -24,6 +25,7 @@ layout(push_constant, std430) uniform vx_app_push {
     uint max_visits;
     uint kind;      // VX_APP_KIND_*
     uint count;     // rays in this dispatch
+    uint shadows_at;  // where the shadows start in records; 0: none (appearance/walk.inc)
 } pc;
 
 void main() {
@@ -33,5 +35,5 @@ void main() {
     light.lx = pc.light.x, light.ly = pc.light.y, light.lz = pc.light.z, light.ambient = pc.light.w;
     vx_app_pixels(pc.pixels).p[i] = vx_app_walk(vx_words(pc.blob), vx_words(pc.index), vx_words(pc.records),
                                                 vx_words(pc.faces), pc.kind, vx_app_rays(pc.rays).r[i], light,
-                                                pc.cutoff, pc.max_visits);
+                                                pc.cutoff, pc.max_visits, pc.shadows_at);
 }

@@ -16,7 +16,8 @@
 #define VX_APP_FN VX_FN VX_PRECISE
 
 VX_STRUCT(vx_app_light)
-    float lx, ly, lz;  /* unit direction towards the light */
+    float lx, ly, lz;  /* towards the light; its length is the light reaching the voxel: 1, or
+                          less where a precomputed shadow scales it (appearance/shadows.hpp) */
     float ambient;     /* 0..1 */
 VX_END_STRUCT(vx_app_light)
 

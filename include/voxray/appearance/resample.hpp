@@ -78,7 +78,7 @@ struct finer_level_surfaces {
         ray r;
         r.origin = glm::vec3(origin * 2.0), r.direction = glm::vec3(direction);
         r.tmin = inset, r.tmax = std::max(float(length * 2.0) - inset, inset);
-        appearance_pixel p = finer.walk_one(r, {.to_light = {0.0f, 1.0f, 0.0f}, .ambient = 1.0f});
+        appearance_pixel p = finer.walk_one(r, {.to_light = {0.0f, 1.0f, 0.0f}, .ambient = 1.0f, .shadows = false});
         segment_hit h;
         h.coverage = std::clamp(1.0f - p.transmittance, 0.0f, 1.0f);
         h.hit = h.coverage > stop_threshold(r);

@@ -52,12 +52,20 @@ inline int record_words(record_kind k) {
     return 0;
 }
 
+// Precomputed shadows (shadows.hpp): the light they are for and each row's visibility of
+// it, round(255 v).
+struct table_shadows {
+    glm::vec3 to_light{0.0f, 1.0f, 0.0f};  // unit
+    std::vector<std::uint8_t> visibility;  // a byte a row
+};
+
 struct appearance_table {
     record_kind kind = record_kind::averages;
     int record_words = 0;
     std::vector<glm::ivec3> voxels;     // sorted by ordinal_less
     std::vector<std::uint32_t> words;   // voxels.size() * record_words
     std::vector<std::uint32_t> faces;   // the compact records' face pool
+    std::optional<table_shadows> shadows;
 
     std::size_t size() const { return voxels.size(); }
     std::span<const std::uint32_t> record(std::size_t row) const {
@@ -69,7 +77,10 @@ struct appearance_table {
         return std::size_t(it - voxels.begin());
     }
     double bytes_per_voxel() const {
-        return voxels.empty() ? 0.0 : 4.0 * double(words.size() + faces.size()) / double(voxels.size());
+        std::size_t shadow_bytes = shadows ? shadows->visibility.size() : 0;
+        return voxels.empty() ? 0.0
+                              : (4.0 * double(words.size() + faces.size()) + double(shadow_bytes)) /
+                                    double(voxels.size());
     }
 };
 

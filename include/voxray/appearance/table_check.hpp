@@ -4,6 +4,7 @@
 //
 //   check_table(table, [&](std::size_t row, auto... what) { fail("row ", row, ": ", what...); });
 #pragma once
+#include <cmath>
 #include <cstddef>
 #include <cstdint>
 
@@ -15,8 +16,9 @@ namespace voxray::appearance {
 
 // Calls `bad(row, what...)`, which must throw, for the first fault: a kind outside the
 // enum, record words that are not the kind's, a words array of another length, rows out of
-// the ordinal order (or repeated), an odd face pool, a compact record whose faces leave the
-// pool or number more than VX_APP_MAX_FACES. Row 0 stands for the table as a whole.
+// the ordinal order (or repeated), shadows of another length or for a direction that is not a
+// unit vector, an odd face pool, a compact record whose faces leave the pool or number more
+// than VX_APP_MAX_FACES. Row 0 stands for the table as a whole.
 template <class Bad>
 void check_table(const appearance_table& t, Bad&& bad) {
     int words = record_words(t.kind);
@@ -29,6 +31,13 @@ void check_table(const appearance_table& t, Bad&& bad) {
         if (!ordinal_less(t.voxels[row - 1], t.voxels[row]))
             bad(row, "voxel (", t.voxels[row].x, ", ", t.voxels[row].y, ", ", t.voxels[row].z,
                 ") is not after the row before it in the ordinal order (unsorted or repeated)");
+    if (t.shadows) {
+        glm::vec3 l = t.shadows->to_light;
+        if (t.shadows->visibility.size() != t.voxels.size())
+            bad(0, "shadows of ", t.shadows->visibility.size(), " rows for a table of ", t.voxels.size());
+        if (!(std::abs(l.x * l.x + l.y * l.y + l.z * l.z - 1.0f) < 1e-3f))
+            bad(0, "shadows for a light towards (", l.x, ", ", l.y, ", ", l.z, "), not a unit vector");
+    }
     if (t.kind != record_kind::compact) return;
     if (t.faces.size() % VX_APP_FACE_WORDS != 0) bad(0, "a face pool of ", t.faces.size(), " words (odd)");
     std::uint64_t pool = t.faces.size() / VX_APP_FACE_WORDS;

@@ -44,10 +44,11 @@ public:
     // Rays' directions must be unit vectors (records are evaluated for them).
     std::vector<appearance_pixel> walk(std::span<const ray> rays, const appearance_light& light) const {
         std::vector<appearance_pixel> out(rays.size());
+        const std::uint32_t shadows_at = words_.shadows.at_for(light);
         constexpr std::size_t batch = 256;
         pool_->parallel_for((rays.size() + batch - 1) / batch, [&](std::size_t b) {
             for (std::size_t i = b * batch; i < std::min(rays.size(), (b + 1) * batch); ++i)
-                out[i] = walk_unchecked(rays[i], light);
+                out[i] = walk_unchecked(rays[i], light, shadows_at);
         });
         appearance::check_walked(out);
         return out;
@@ -59,20 +60,20 @@ public:
     // One ray on the calling thread (safe from many threads at once): what a coarser level's
     // table is re-sampled with (appearance/resample.hpp).
     appearance_pixel walk_one(const ray& r, const appearance_light& light) const {
-        appearance_pixel p = walk_unchecked(r, light);
+        appearance_pixel p = walk_unchecked(r, light, words_.shadows.at_for(light));
         appearance::check_walked({&p, 1});
         return p;
     }
 
 private:
-    appearance_pixel walk_unchecked(const ray& r, const appearance_light& light) const {
+    appearance_pixel walk_unchecked(const ray& r, const appearance_light& light, std::uint32_t shadows_at) const {
         static_assert(sizeof(kernels::scalar::vx_app_walk_result) == sizeof(appearance_pixel));
         kernels::scalar::vx_app_light l{light.to_light.x, light.to_light.y, light.to_light.z, light.ambient};
         kernels::scalar::vx_ray lane{r.origin.x,    r.origin.y,    r.origin.z,    r.tmin,
                                      r.direction.x, r.direction.y, r.direction.z, r.tmax};
         return std::bit_cast<appearance_pixel>(kernels::scalar::vx_app_walk<Kernel>(
             blob_.data(), words_.index.data(), words_.records.data(), words_.faces.data(), words_.kind, lane, l,
-            light.cutoff, light.max_visits));
+            light.cutoff, light.max_visits, shadows_at));
     }
 
     std::vector<std::uint32_t> blob_;

@@ -65,7 +65,7 @@ public:
     // uploaded here and may die after the call.
     opencl_appearance_walker(std::span<const std::uint32_t> blob, const appearance::appearance_table& table,
                              const opencl_options& options = {})
-        : ctx_(opencl_detail::acquire_device_context(options)), kind_(appearance::walk_words::kind_code(table.kind)) {
+        : ctx_(opencl_detail::acquire_device_context(options)) {
         namespace cl = opencl_detail;
         if (options.user_context) {
             cl::check(clRetainCommandQueue(options.user_context->queue), "clRetainCommandQueue",
@@ -79,6 +79,7 @@ public:
         kernel_ = cl::create_kernel(ctx_->program(cl::find_walk_program(Kernel::name)), "vx_appearance_walk");
         local_size_ = cl::group_size_for(kernel_.get(), ctx_->device());
         appearance::walk_words words(table);
+        kind_ = words.kind, shadows_ = words.shadows;
         upload(blob_, blob, "the structure blob");
         upload(index_, words.index, "the ordinal index");
         upload(records_, words.records, "the appearance records");
@@ -90,6 +91,7 @@ public:
     // Rays' directions must be unit vectors (records are evaluated for them).
     std::vector<appearance_pixel> walk(std::span<const ray> rays, const appearance_light& light) {
         using opencl_detail::check;
+        const std::uint32_t shadows_at = shadows_.at_for(light);
         std::vector<appearance_pixel> out(rays.size());
         if (rays.empty()) return out;
         if (rays.size() > 0xFFFFFFFFu) fail("OpenCL appearance walk: ", rays.size(), " rays, above 2^32 - 1");
@@ -105,6 +107,7 @@ public:
         for (std::uint32_t v : {count, kind_}) set(arg++, v);
         for (float v : {light.to_light.x, light.to_light.y, light.to_light.z, light.ambient, light.cutoff}) set(arg++, v);
         set(arg++, light.max_visits);
+        set(arg++, shadows_at);
         std::size_t global = (std::size_t(count) + local_size_ - 1) / local_size_ * local_size_;
         check(clEnqueueNDRangeKernel(queue_.get(), kernel_.get(), 1, nullptr, &global, &local_size_, 0, nullptr,
                                      nullptr),
@@ -138,7 +141,8 @@ private:
     opencl_detail::queue_handle queue_;
     opencl_detail::kernel_handle kernel_;
     std::size_t local_size_ = 1;
-    std::uint32_t kind_;
+    std::uint32_t kind_ = 0;
+    appearance::walk_shadows shadows_;
     opencl_detail::device_buffer blob_{CL_MEM_READ_ONLY, "the structure blob"};
     opencl_detail::device_buffer index_{CL_MEM_READ_ONLY, "the ordinal index"};
     opencl_detail::device_buffer records_{CL_MEM_READ_ONLY, "the appearance records"};

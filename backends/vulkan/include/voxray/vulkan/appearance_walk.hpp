@@ -44,9 +44,10 @@ struct appearance_push {
     std::uint32_t max_visits;
     std::uint32_t kind;
     std::uint32_t count;
+    std::uint32_t shadows_at;
 };
-static_assert(sizeof(appearance_push) == 80 && offsetof(appearance_push, to_light) == 48);
-static_assert(offsetof(appearance_push, cutoff) == 64 && offsetof(appearance_push, count) == 76);
+static_assert(sizeof(appearance_push) == 88 && offsetof(appearance_push, to_light) == 48);
+static_assert(offsetof(appearance_push, cutoff) == 64 && offsetof(appearance_push, shadows_at) == 80);
 
 }  // namespace voxray::vulkan_detail
 
@@ -69,11 +70,11 @@ public:
           commands_(std::make_unique<vulkan_detail::command_stream>(*ctx_)),
           pipeline_(std::make_unique<vulkan_detail::compute_pipeline>(*ctx_, modules_.appearance,
                                                                       std::uint32_t(sizeof(vulkan_detail::appearance_push)))),
-          kind_(appearance::walk_words::kind_code(table.kind)),
           mapped_(!options.force_staging) {
         VkDeviceSize most = std::min(ctx_->max_buffer(), ctx_->max_allocation());
         slice_ = std::min<std::size_t>(slice_, std::max<VkDeviceSize>(most / sizeof(appearance_pixel), 1));
         appearance::walk_words words(table);
+        kind_ = words.kind, shadows_ = words.shadows;
         blob_ = upload(std::as_bytes(blob), "structure blob");
         index_ = upload(std::as_bytes(std::span(words.index)), "ordinal index");
         records_ = upload(std::as_bytes(std::span(words.records)), "appearance records");
@@ -85,10 +86,11 @@ public:
 
     // Rays' directions must be unit vectors (records are evaluated for them).
     std::vector<appearance_pixel> walk(std::span<const ray> rays, const appearance_light& light) {
+        const std::uint32_t shadows_at = shadows_.at_for(light);
         std::vector<appearance_pixel> out(rays.size());
         for (std::size_t first = 0; first < rays.size(); first += slice_) {
             std::size_t n = std::min(slice_, rays.size() - first);
-            walk_slice(rays.subspan(first, n), std::span(out).subspan(first, n), light);
+            walk_slice(rays.subspan(first, n), std::span(out).subspan(first, n), light, shadows_at);
         }
         appearance::check_walked(out);
         return out;
@@ -96,7 +98,8 @@ public:
 
 private:
     // One submission: rays in, every dispatch, pixels out, through grow-only buffers.
-    void walk_slice(std::span<const ray> rays, std::span<appearance_pixel> out, const appearance_light& light) {
+    void walk_slice(std::span<const ray> rays, std::span<appearance_pixel> out, const appearance_light& light,
+                    std::uint32_t shadows_at) {
         using namespace vulkan_detail;
         if (io_.input_bytes() < rays.size_bytes()) {
             std::size_t capacity = std::min(slice_, std::bit_ceil(rays.size()));
@@ -113,7 +116,7 @@ private:
                                io_.input_address() + first * sizeof(ray),
                                io_.output_address() + first * sizeof(appearance_pixel),
                                {light.to_light.x, light.to_light.y, light.to_light.z}, light.ambient, light.cutoff,
-                               light.max_visits, kind_, std::uint32_t(n)};
+                               light.max_visits, kind_, std::uint32_t(n), shadows_at};
             pipeline_->bind(cmd, pc);
             vkCmdDispatch(cmd, std::uint32_t((n + group_size - 1) / group_size), 1, 1);
         }
@@ -156,8 +159,9 @@ private:
     std::shared_ptr<vulkan_detail::context> ctx_;
     std::unique_ptr<vulkan_detail::command_stream> commands_;
     std::unique_ptr<vulkan_detail::compute_pipeline> pipeline_;
-    std::uint32_t kind_;
     bool mapped_;
+    std::uint32_t kind_ = 0;
+    appearance::walk_shadows shadows_;
     vulkan_detail::buffer blob_, index_, records_, faces_;
     vulkan_detail::round_trip_buffers io_;  // rays in, pixels out
     // Rays a submission: bounds the ray and pixel buffers (128 MiB of pixels at most, less
