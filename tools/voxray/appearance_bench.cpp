@@ -167,8 +167,8 @@ decltype(auto) with_kernel(const std::string& name, F&& f) {
     return f.template operator()<kernels::dense_grid_kernel>();
 }
 
-// `m` with precomputed shadows of `light`, walked over `s`; the time goes to m.stats'
-// shadow_seconds.
+// A copy of `m` with precomputed shadows of `light`, walked over `s`; their time goes to
+// the copy's shadow_us_per_voxel.
 method_table with_shadows(const walk_structure& s, const method_table& m, const shading& light, unsigned threads) {
     method_table shadowed = m;
     appearance::precompute_stats stats;
