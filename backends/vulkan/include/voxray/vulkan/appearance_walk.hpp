@@ -9,7 +9,6 @@
 //   std::vector<voxray::appearance_pixel> out = walker.walk(rays, light);
 #pragma once
 #include <algorithm>
-#include <bit>
 #include <cstddef>
 #include <cstdint>
 #include <cstring>
@@ -101,12 +100,9 @@ private:
     void walk_slice(std::span<const ray> rays, std::span<appearance_pixel> out, const appearance_light& light,
                     std::uint32_t shadows_at) {
         using namespace vulkan_detail;
-        if (io_.input_bytes() < rays.size_bytes()) {
-            std::size_t capacity = std::min(slice_, std::bit_ceil(rays.size()));
-            check_size(capacity * sizeof(appearance_pixel), "pixel buffer");
-            io_.reserve(*ctx_, capacity * sizeof(ray), capacity * sizeof(appearance_pixel), mapped_, "ray buffer",
-                        "pixel buffer");
-        }
+        // The constructor bounded slice_ by the device's buffer limits.
+        io_.reserve_records(*ctx_, rays.size(), slice_, sizeof(ray), sizeof(appearance_pixel), mapped_, "ray buffer",
+                            "pixel buffer");
         VkCommandBuffer cmd = commands_->begin();
         io_.write_inputs(cmd, rays.data(), rays.size_bytes());
         std::size_t per = std::size_t(ctx_->properties().limits.maxComputeWorkGroupCount[0]) * group_size;

@@ -10,7 +10,6 @@
 // records). Not thread-safe; use one engine per thread.
 #pragma once
 #include <algorithm>
-#include <bit>
 #include <chrono>
 #include <cstdint>
 #include <cstring>
@@ -297,10 +296,8 @@ private:
 
     // Grow-only ray/hit buffers (and their staging twins where they are not mapped).
     void reserve(std::size_t count) {
-        if (io_.input_bytes() >= count * sizeof(ray)) return;
-        std::size_t capacity = std::min(slice_, std::bit_ceil(count));
-        io_.reserve(*ctx_, capacity * sizeof(ray), capacity * sizeof(hit), !options_.force_staging, "ray buffer",
-                    "hit buffer");
+        io_.reserve_records(*ctx_, count, slice_, sizeof(ray), sizeof(hit), !options_.force_staging, "ray buffer",
+                            "hit buffer");
     }
 
     void trace_slice(std::span<const ray> rays, std::span<hit> hits, std::uint32_t mode) {

@@ -3,13 +3,15 @@
 // a staging twin where it is not mapped (discrete GPUs, vulkan_options::force_staging). The
 // tracer's engine (engine.hpp) and the appearance walker (appearance_walk.hpp) share it.
 //
-//   reserve(ctx, in_bytes, out_bytes, ...)   before recording
+//   reserve(ctx, in_bytes, out_bytes, ...)   before recording (or reserve_records)
 //   write_inputs(cmd, data, bytes)           copies in; records the staging copy if any
 //   ... dispatches over input_address() and output_address() ...
 //   record_read_back(cmd, bytes)             the barrier (and copy) the host read needs
 //   submit and wait, then read_outputs(to, bytes)
 #pragma once
 #include <algorithm>
+#include <bit>
+#include <cstddef>
 #include <cstring>
 
 #include <vulkan/vulkan.h>
@@ -45,6 +47,15 @@ public:
             *this = round_trip_buffers();
             throw;
         }
+    }
+
+    // Room for `count` records of `in_record` and `out_record` bytes: where the inputs do not
+    // fit, grows to the next power of two records, at most `slice` (a submission's most).
+    void reserve_records(const context& ctx, std::size_t count, std::size_t slice, std::size_t in_record,
+                         std::size_t out_record, bool mapped, const char* in_what, const char* out_what) {
+        if (in_.size() >= count * in_record) return;
+        std::size_t capacity = std::min(slice, std::bit_ceil(count));
+        reserve(ctx, capacity * in_record, capacity * out_record, mapped, in_what, out_what);
     }
 
     // Copies `bytes` of inputs in. Host writes before vkQueueSubmit are visible to the device;
