@@ -7,9 +7,10 @@
 # (docs/bench/appearance_table.md, also in docs/appearance.md) with every metric checked
 # against scikit-image's on the strips, and keeps view 0's strips in docs/bench/appearance/.
 # Then the same with cast shadows (--shadows) on two scenes at 128^3: appearance_shadows.*.
-# About 30 minutes on 2 shared cores.
+# Then appearance in a world's LOD chunks (appearance-world-bench): appearance_world.*.
+# About 35 minutes on 2 shared cores.
 # Override SCENES (space-separated), RESOLUTIONS, REFERENCE_SIDE (16: 256 samples a pixel),
-# SHADOW_SCENES, PARTS ("plain shadows": which of the two to run).
+# SHADOW_SCENES, PARTS ("plain shadows world": which of the three to run).
 set -euo pipefail
 source "$(dirname "${BASH_SOURCE[0]}")/setup.sh"
 DATA="${VOXRAY_DATA_DIR:-$ROOT/../shared/data}"
@@ -56,13 +57,37 @@ run_matrix() {
 }
 
 # PARTS: which matrices (both by default).
-if [[ " ${PARTS:-plain shadows} " == *" plain "* ]]; then
+if [[ " ${PARTS:-plain shadows world} " == *" plain "* ]]; then
     run_matrix appearance "--lod" "${RESOLUTIONS:-128 256}" "${scenes[@]}"
 fi
 # Cast shadows (--shadows): two scenes at 128^3, the bunny (a solid, self-shadowing) and the
 # small tree (foliage, partial shadows), about 4 minutes.
-if [[ " ${PARTS:-plain shadows} " == *" shadows "* ]]; then
+if [[ " ${PARTS:-plain shadows world} " == *" shadows "* ]]; then
     SCENES="${SHADOW_SCENES:-$DATA/mesh/stanford_bunny.ply $DATA/mesh/small_tree/scene.gltf}"
     relative_scenes
     run_matrix appearance_shadows "--shadows" "128" "${scenes[@]}"
+fi
+# A world's LOD chunks with filtered tables against average-colour ones, both against the
+# frames of every chunk at LOD 0, at StreamingFactor 2.0: the kitchen at 512^3 in 64^3 chunks
+# seen from inside it (a third of the orbit's distance: near chunks at LOD 0, far ones coarse),
+# and the bunny at 256^3 in 32^3 chunks from the orbit (every chunk coarse). About 3 minutes.
+if [[ " ${PARTS:-plain shadows world} " == *" world "* ]]; then
+    name=appearance_world results="$OUT/appearance_world_results.jsonl"
+    strips="$(realpath -m --relative-to="$ROOT" "$BUILD_DIR")/${name}_strips"
+    rm -rf "$results" "$strips" "${OUT:?}/$name"
+    mkdir -p "$strips" "$OUT/$name"
+    for run in "kitchen/scene.gltf 512 6 0.3" "stanford_bunny.ply 256 5 1"; do
+        read -r mesh resolution bits distance <<< "$run"
+        scene="$(realpath -m --relative-to="$ROOT" "$DATA/mesh/$mesh")"
+        echo "== appearance-world-bench $scene at $resolution, chunks of 2^$bits"
+        part="$OUT/${name}_part.jsonl"
+        "$TOOL" appearance-world-bench "$scene" --resolution "$resolution" --chunk-bits "$bits" --distance "$distance" \
+            --factor 2 --views 3 --size 256 --threads 2 --json "$part" --images "$strips"
+        if [ -s "$results" ]; then tail -n +2 "$part" >> "$results"; else cp "$part" "$results"; fi
+        rm -f "$part"
+    done
+    echo "== table ($name)"
+    /usr/bin/python3 scripts/appearance_world_table.py "$results" --strips "$strips" --out "$OUT/${name}_table.md" \
+        --doc docs/appearance.md
+    cp "$strips"/*_view0.png "$OUT/$name/"
 fi

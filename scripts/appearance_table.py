@@ -39,22 +39,44 @@ def strip_name(row):
     return "%s_%d_view%d_%s.png" % (folder, row["resolution"], row["view"], row["light"])
 
 
-def check_with_skimage(rows, strips):
-    methods = sorted({r["method"] for r in rows}, key=METHODS.index)
+def metrics(reference, got):
+    """MSE (in 0..1) and SSIM of two sRGB pictures, by scikit-image, SSIM with Wang's parameters."""
+    mse = mean_squared_error(reference / 255.0, got / 255.0)
+    ssim = structural_similarity(reference, got, gaussian_weights=True, sigma=1.5, use_sample_covariance=False,
+                                 data_range=255, channel_axis=-1)
+    return mse, ssim
+
+
+def put_in_doc(path, marker, text):
+    """Replaces what lies between <!-- MARKER-table:begin --> and :end --> in the file at `path`."""
+    doc = pathlib.Path(path).read_text()
+    begin, end = "<!-- %s-table:begin -->" % marker, "<!-- %s-table:end -->" % marker
+    marked = re.sub("(%s\n).*?(%s)" % (re.escape(begin), re.escape(end)),
+                    lambda m: m.group(1) + text + m.group(2), doc, flags=re.S)
+    if marked == doc and begin not in doc:
+        sys.exit("%s has no %s-table markers" % (path, marker))
+    pathlib.Path(path).write_text(marked)
+
+
+def check_strips(rows, strips, name_of, order, script):
+    """Recomputes each row's MSE and SSIM from its strip (file name_of(row) in `strips`: the
+    reference, then one picture a method in `order`); stops if they differ from the tool's."""
     worst_mse = worst_ssim = 0.0
     for r in rows:
-        image = imread(strips / strip_name(r))[..., :3]
+        image = imread(strips / name_of(r))[..., :3]
         size = r["size"]
         parts = [image[:, i * size:(i + 1) * size] for i in range(image.shape[1] // size)]
-        reference, got = parts[0], parts[1 + methods.index(r["method"])]
-        mse = mean_squared_error(reference / 255.0, got / 255.0)
-        ssim = structural_similarity(reference, got, gaussian_weights=True, sigma=1.5, use_sample_covariance=False,
-                                     data_range=255, channel_axis=-1)
+        mse, ssim = metrics(parts[0], parts[1 + order.index(r["method"])])
         worst_mse, worst_ssim = max(worst_mse, abs(mse - r["mse"])), max(worst_ssim, abs(ssim - r["ssim"]))
     if worst_mse > 1e-9 or worst_ssim > 1e-6:
-        sys.exit("appearance_table.py: the tool's metrics differ from scikit-image's: MSE by %.3g, SSIM by %.3g"
-                 % (worst_mse, worst_ssim))
+        sys.exit("%s: the tool's metrics differ from scikit-image's: MSE by %.3g, SSIM by %.3g"
+                 % (script, worst_mse, worst_ssim))
     return worst_mse, worst_ssim
+
+
+def check_with_skimage(rows, strips):
+    methods = sorted({r["method"] for r in rows}, key=METHODS.index)
+    return check_strips(rows, strips, strip_name, methods, "appearance_table.py")
 
 
 def table(header, rows, agreement):
@@ -116,13 +138,7 @@ def main():
     text = table(header, rows, check_with_skimage(rows, pathlib.Path(a.strips)))
     pathlib.Path(a.out).write_text(text)
     if a.doc:
-        doc = pathlib.Path(a.doc).read_text()
-        begin, end = "<!-- %s-table:begin -->" % a.marker, "<!-- %s-table:end -->" % a.marker
-        marked = re.sub("(%s\n).*?(%s)" % (re.escape(begin), re.escape(end)),
-                        lambda m: m.group(1) + text + m.group(2), doc, flags=re.S)
-        if marked == doc and begin not in doc:
-            sys.exit("appearance_table.py: %s has no %s-table markers" % (a.doc, a.marker))
-        pathlib.Path(a.doc).write_text(marked)
+        put_in_doc(a.doc, a.marker, text)
     print(text)
 
 

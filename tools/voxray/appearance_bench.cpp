@@ -20,15 +20,12 @@
 
 #include "bench_header.hpp"
 #include "cli.hpp"
-#include "image_writer.hpp"
 #include "output.hpp"
-#include "ssim.hpp"
 #include "timing.hpp"
-#include "voxray/io/surface_sample.hpp"
 #include "voxray/rays/camera.hpp"
 
 #if VOXRAY_WITH_EMBREE
-#include "appearance_reference.hpp"
+#include "appearance_pictures.hpp"
 #include "voxray/appearance/precompute.hpp"
 #include "voxray/appearance/resample.hpp"
 #include "voxray/appearance/shadows.hpp"
@@ -60,50 +57,6 @@ struct appearance_bench_options {
 const std::vector<std::string> walk_structures = {"dense", "brickmap", "naadf"};
 
 #if VOXRAY_WITH_EMBREE
-
-std::vector<std::uint8_t> srgb8(const linear_picture& p) {
-    std::vector<std::uint8_t> out;
-    out.reserve(p.rgb.size() * 3);
-    for (glm::vec3 c : p.rgb) {
-        rgba e = io::encode_srgb8(glm::vec4(glm::clamp(c, 0.0f, 1.0f), 1.0f));
-        out.insert(out.end(), {e.r, e.g, e.b});
-    }
-    return out;
-}
-
-struct picture_errors {
-    double mse = 0, mse_foreground = 0, psnr = 0, ssim = 0;
-};
-
-picture_errors compare(const std::vector<std::uint8_t>& ref, const std::vector<std::uint8_t>& got,
-                       const std::vector<float>& coverage, int w, int h) {
-    picture_errors e;
-    double all = 0, fg = 0;
-    std::size_t fg_pixels = 0;
-    for (std::size_t i = 0; i < coverage.size(); ++i) {
-        double sq = 0;
-        for (int c = 0; c < 3; ++c) {
-            double d = (double(ref[3 * i + c]) - double(got[3 * i + c])) / 255.0;
-            sq += d * d;
-        }
-        all += sq;
-        if (coverage[i] > 0) fg += sq, ++fg_pixels;
-    }
-    e.mse = all / double(3 * coverage.size());
-    e.mse_foreground = fg_pixels ? fg / double(3 * fg_pixels) : 0.0;
-    e.psnr = e.mse > 0 ? 10.0 * std::log10(1.0 / e.mse) : 99.0;
-    e.ssim = ssim_rgb8_channels(ref, got, w, h);
-    return e;
-}
-
-// The light in front (from behind the camera, above) or behind the model (facing it).
-glm::vec3 light_direction(const camera& cam, bool front) {
-    glm::vec3 to_eye = glm::normalize(cam.position - cam.target);
-    glm::vec3 horizontal = to_eye - glm::dot(to_eye, cam.up) * cam.up;
-    if (glm::length(horizontal) < 1e-4f) horizontal = glm::vec3(1, 0, 0);
-    horizontal = glm::normalize(horizontal);
-    return glm::normalize((front ? horizontal : -horizontal) + 0.8f * cam.up);
-}
 
 struct method_table {
     std::string name;
@@ -200,23 +153,10 @@ walked_picture walk_picture(const walk_structure& s, const method_table& m, cons
     std::vector<appearance_pixel> px = with_kernel(s.name, [&]<class Kernel>() {
         return walk_rays<Kernel>(s.blob, m, rays, light, threads, w.seconds);
     });
-    w.picture = {size, size, std::vector<glm::vec3>(std::size_t(size) * std::size_t(size), glm::vec3(0.0f)), {}};
-    for (std::size_t i = 0; i < px.size(); ++i) {
-        glm::vec3 c = glm::vec3(px[i].r, px[i].g, px[i].b) + px[i].transmittance * light.background;
-        w.picture.rgb[i / 4] += 0.25f * c;
-        w.steps += px[i].steps, w.visits += px[i].visits;
-    }
+    w.picture = blend_four(px, size, size, light.background);
+    for (const appearance_pixel& p : px) w.steps += p.steps, w.visits += p.visits;
     w.steps /= double(px.size()), w.visits /= double(px.size());
     return w;
-}
-
-void write_strip(const std::vector<std::vector<std::uint8_t>>& parts, int size, const std::string& path) {
-    std::vector<std::uint8_t> joined;
-    for (int y = 0; y < size; ++y)
-        for (const auto& part : parts)
-            joined.insert(joined.end(), part.begin() + std::ptrdiff_t(3 * std::size_t(y) * std::size_t(size)),
-                          part.begin() + std::ptrdiff_t(3 * std::size_t(y + 1) * std::size_t(size)));
-    write_image(path, size * int(parts.size()), size, joined);
 }
 
 int appearance_bench(const appearance_bench_options& o) {
@@ -258,13 +198,7 @@ int appearance_bench(const appearance_bench_options& o) {
         for (bool front : {true, false})
             lights.push_back({light_direction(cam, front), 0.2f, glm::vec3(0.2f), o.shadows});
         auto reference = reference_pictures(scene, mesh, cam, size, size, o.reference_side, lights, o.threads);
-        camera_frame frame(cam, size, size);
-        std::vector<ray> rays;  // 4 a pixel, at the centres of its 2 x 2 strata
-        for (int y = 0; y < size; ++y)
-            for (int x = 0; x < size; ++x)
-                for (int s = 0; s < 4; ++s)
-                    rays.push_back(frame.through(float(x) + 0.25f + 0.5f * float(s & 1),
-                                                 float(y) + 0.25f + 0.5f * float(s >> 1)));
+        std::vector<ray> rays = four_rays_a_pixel(cam, size, size);
         for (std::size_t l = 0; l < lights.size(); ++l) {
             const char* light_name = l == 0 ? "front" : "behind";
             std::vector<std::uint8_t> ref8 = srgb8(reference[l]);
@@ -310,7 +244,7 @@ int appearance_bench(const appearance_bench_options& o) {
                 strip.push_back(std::move(got8));
             }
             if (!o.images.empty())
-                write_strip(strip, size,
+                write_strip(strip, size, size,
                             (std::filesystem::path(o.images) / (folder + "_" + std::to_string(o.resolution) + "_view" +
                                                                  std::to_string(view) + "_" + light_name + ".png"))
                                 .string());

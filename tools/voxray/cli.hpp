@@ -36,6 +36,7 @@ command add_world_fly(CLI::App& parent);
 command add_mesh(CLI::App& parent);
 command add_mesh_bench(CLI::App& parent);
 command add_appearance_bench(CLI::App& parent);
+command add_appearance_world_bench(CLI::App& parent);
 
 inline const std::vector<std::string> ray_set_names = {"primary", "secondary", "shadow"};
 

@@ -13,5 +13,6 @@ __kernel void vx_appearance_walk(__global const uint* blob, __global const uint*
     if (i >= count) return;
     vx_app_light light;
     light.lx = to_light_x, light.ly = to_light_y, light.lz = to_light_z, light.ambient = ambient;
-    pixels[i] = vx_app_walk(blob, index, records, faces, kind, rays[i], light, cutoff, max_visits, shadows_at);
+    pixels[i] = vx_app_walk(blob, index, records, faces, kind, rays[i], light, cutoff, max_visits, shadows_at,
+                            vx_app_walk_state_start()).w;
 }

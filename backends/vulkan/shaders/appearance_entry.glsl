@@ -35,5 +35,5 @@ void main() {
     light.lx = pc.light.x, light.ly = pc.light.y, light.lz = pc.light.z, light.ambient = pc.light.w;
     vx_app_pixels(pc.pixels).p[i] = vx_app_walk(vx_words(pc.blob), vx_words(pc.index), vx_words(pc.records),
                                                 vx_words(pc.faces), pc.kind, vx_app_rays(pc.rays).r[i], light,
-                                                pc.cutoff, pc.max_visits, pc.shadows_at);
+                                                pc.cutoff, pc.max_visits, pc.shadows_at, vx_app_walk_state_start()).w;
 }

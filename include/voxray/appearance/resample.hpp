@@ -104,18 +104,25 @@ private:
     }
 };
 
-// The table of `coarse` (voxels at half the resolution of the finer level: coarser_voxels,
-// or the coarse structure's own), of kind o.kind, re-sampled from the finer level that
-// `finer` walks. The table is the same for any o.threads.
+// The table of the coarse `voxels` (any order; each covers voxels [2c, 2c + 2) of the finer
+// level that `finer` walks), of kind o.kind, re-sampled from the finer level. The table is
+// the same for any o.threads.
 template <class Walker>
-appearance_table resample(const Walker& finer, const voxel_model& coarse, const precompute_options& o = {},
+appearance_table resample(const Walker& finer, std::vector<glm::ivec3> voxels, const precompute_options& o = {},
                           precompute_stats* stats = nullptr) {
     if (finer.kind() == VX_APP_KIND_SIX)
         fail("appearance resample: the finer level's table is a six directions one, whose colours are lit when "
              "made; re-sample from averages, sggx, compact or faithful records");
+    return build_table(finer_level_surfaces<Walker>{finer, o.sampling.seed}, std::move(voxels), o, stats);
+}
+
+// The same for the voxels of `coarse` (coarser_voxels, or the coarse structure's own).
+template <class Walker>
+appearance_table resample(const Walker& finer, const voxel_model& coarse, const precompute_options& o = {},
+                          precompute_stats* stats = nullptr) {
     std::vector<glm::ivec3> voxels;
     coarse.for_each_voxel([&](glm::ivec3 p, std::uint8_t) { voxels.push_back(p); });
-    return build_table(finer_level_surfaces<Walker>{finer, o.sampling.seed}, std::move(voxels), o, stats);
+    return resample(finer, std::move(voxels), o, stats);
 }
 
 }  // namespace voxray::appearance

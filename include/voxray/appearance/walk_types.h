@@ -26,6 +26,25 @@ VX_APP_FN vx_app_walk_result vx_app_walk_start(void) {
     return w;
 }
 
+/* A walk under way (walk.inc): what it has blended, the voxel it blended last and the run of
+ * touching voxels that voxel ends (the run's transmittance before it, its coverage so far).
+ * A walk through several pieces walked one after another (a world's chunks:
+ * appearance/world/placed_walker.hpp) hands the state on, so that a surface crossing from one
+ * piece into the next stays one run, as in one piece. */
+VX_STRUCT(vx_app_walk_state)
+    vx_app_walk_result w;
+    int px, py, pz;
+    float run_t, run_covered;
+VX_END_STRUCT(vx_app_walk_state)
+
+VX_APP_FN vx_app_walk_state vx_app_walk_state_start(void) {
+    vx_app_walk_state s;
+    s.w = vx_app_walk_start();
+    s.px = 0, s.py = 0, s.pz = 0;
+    s.run_t = 1.0f, s.run_covered = 0.0f;
+    return s;
+}
+
 /* t at which ray r leaves voxel (x, y, z): the nearest far plane of the moving axes. */
 VX_APP_FN float vx_app_exit_axis(float o, float d, int c) {
     return d > 0.0f ? (vx_i2f(c + 1) - o) / d : (d < 0.0f ? (vx_i2f(c) - o) / d : VX_INF);

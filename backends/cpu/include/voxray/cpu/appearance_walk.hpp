@@ -60,20 +60,34 @@ public:
     // One ray on the calling thread (safe from many threads at once): what a coarser level's
     // table is re-sampled with (appearance/resample.hpp).
     appearance_pixel walk_one(const ray& r, const appearance_light& light) const {
-        appearance_pixel p = walk_unchecked(r, light, words_.shadows.at_for(light));
+        state s = start();
+        walk_on(s, r, light);
+        return std::bit_cast<appearance_pixel>(s.w);
+    }
+
+    // A walk under way (appearance/walk_types.h): the walk of one ray through several
+    // walkers' pieces, one after another, hands it on (appearance/world/placed_walker.hpp).
+    using state = kernels::scalar::vx_app_walk_state;
+    static state start() { return kernels::scalar::vx_app_walk_state_start(); }
+    // Goes on with `s` along `r` (in this walker's voxels) on the calling thread.
+    void walk_on(state& s, const ray& r, const appearance_light& light) const {
+        s = walk_unchecked(s, r, light, words_.shadows.at_for(light));
+        appearance_pixel p = std::bit_cast<appearance_pixel>(s.w);
         appearance::check_walked({&p, 1});
-        return p;
     }
 
 private:
     appearance_pixel walk_unchecked(const ray& r, const appearance_light& light, std::uint32_t shadows_at) const {
+        return std::bit_cast<appearance_pixel>(walk_unchecked(start(), r, light, shadows_at).w);
+    }
+    state walk_unchecked(const state& s, const ray& r, const appearance_light& light, std::uint32_t shadows_at) const {
         static_assert(sizeof(kernels::scalar::vx_app_walk_result) == sizeof(appearance_pixel));
         kernels::scalar::vx_app_light l{light.to_light.x, light.to_light.y, light.to_light.z, light.ambient};
         kernels::scalar::vx_ray lane{r.origin.x,    r.origin.y,    r.origin.z,    r.tmin,
                                      r.direction.x, r.direction.y, r.direction.z, r.tmax};
-        return std::bit_cast<appearance_pixel>(kernels::scalar::vx_app_walk<Kernel>(
-            blob_.data(), words_.index.data(), words_.records.data(), words_.faces.data(), words_.kind, lane, l,
-            light.cutoff, light.max_visits, shadows_at));
+        return kernels::scalar::vx_app_walk<Kernel>(blob_.data(), words_.index.data(), words_.records.data(),
+                                                    words_.faces.data(), words_.kind, lane, l, light.cutoff,
+                                                    light.max_visits, shadows_at, s);
     }
 
     std::vector<std::uint32_t> blob_;

@@ -1,0 +1,176 @@
+// Appearance tables for every chunk of a world on disk, every LOD (issue 25, item 6), built
+// out of core like the geometry (world/build/world_build.hpp): one chunk at a time, each
+// table a file beside the chunk files, so that no level's tables are ever in memory at once.
+//   LOD 0   from the original triangles (precompute.hpp's build_table), the chunk's voxels
+//           taken in the world's voxel space and the rows moved to the chunk's own voxels;
+//   LOD n   re-sampled through the compositing walk (resample.hpp) from the (up to 8)
+//           chunks of LOD n - 1 below it, placed side by side (placed_walker.hpp) and each
+//           walked through its own DAG (the chunk file's) and table (the file written before).
+// A chunk's rows are its DAG's voxels, the world's own LOD rule (world/lod.hpp) included,
+// so the walk of a chunk is the walk of the chunk file as it is.
+//
+//   dir/appearance/<set>/lod<n>/<x>_<y>_<z>.vxap    (a set: one chain of tables, e.g. "compact")
+//
+// A world and its LOD cut walked with them: chunk_walker_of, cut_walker.
+#pragma once
+#include <algorithm>
+#include <chrono>
+#include <filesystem>
+#include <functional>
+#include <memory>
+#include <span>
+#include <string>
+#include <vector>
+
+#if !defined(VOXRAY_LINKED_CPU)
+#error "voxray/appearance/world/chunk_tables.hpp needs voxray::cpu (chunks are walked on its scalar lanes): link it"
+#endif
+#include "voxray/appearance/precompute.hpp"
+#include "voxray/appearance/resample.hpp"
+#include "voxray/appearance/table_file.hpp"
+#include "voxray/appearance/world/placed_walker.hpp"
+#include "voxray/cpu/appearance_walk.hpp"
+#include "voxray/svdag/decode.hpp"
+#include "voxray/svdag/svdag.hpp"
+#include "voxray/world/manifest.hpp"
+
+namespace voxray::appearance {
+
+// A chunk walked through its own DAG and table.
+using chunk_walker = appearance_walker<kernels::svdag_kernel>;
+
+struct chunk_tables_options {
+    std::string set = "compact";                   // the folder of this chain of tables
+    record_kind finest = record_kind::compact;     // LOD 0, from the triangles
+    record_kind coarser = record_kind::compact;    // LOD 1 on, each from the level below
+    std::string finest_from;                       // LOD 0's tables copied from this set, not made
+    sampling_options sampling{};
+    unsigned opacity_strata = 2;
+    unsigned threads = 0;                          // 0: every hardware thread
+    std::function<void(const chunk_key&, const precompute_stats&)> progress;  // after each chunk
+};
+
+struct chunk_tables_report {
+    std::vector<precompute_stats> lods;  // per LOD: voxels, rays, hits and seconds summed over its chunks
+    double seconds = 0;
+};
+
+inline std::filesystem::path chunk_table_path(const std::filesystem::path& dir, const std::string& set,
+                                              const chunk_key& k) {
+    return dir / "appearance" / set / ("lod" + std::to_string(k.lod)) /
+           (std::to_string(k.cell.x) + "_" + std::to_string(k.cell.y) + "_" + std::to_string(k.cell.z) + ".vxap");
+}
+
+// Where a chunk lies in the world's voxels.
+inline piece_placement chunk_placement(const world_grid& g, const chunk_key& k) {
+    return {g.origin + k.cell * (g.edge() << k.lod), 1 << k.lod, g.edge()};
+}
+
+// The table of `set` for chunk `c` (as read_listed_chunk reads it): a missing file, or a
+// table of other voxels (another world's, or another build's), is an error naming the file.
+inline appearance_table load_chunk_table(const std::filesystem::path& dir, const std::string& set,
+                                         const chunk_record& c) {
+    auto path = chunk_table_path(dir, set, c.key);
+    if (!std::filesystem::exists(path))
+        fail("appearance table file ", path.string(), ": missing (the chunk's table of set \"", set,
+             "\": build the world's tables first)");
+    appearance_table t = load_table(path);
+    if (t.size() != c.voxel_count)
+        fail("appearance table file ", path.string(), ": ", t.size(), " rows, but its chunk has ", c.voxel_count,
+             " voxels (a table of another world?)");
+    return t;
+}
+
+// The walker of a chunk the manifest lists, with its table of `set`.
+inline std::shared_ptr<const chunk_walker> chunk_walker_of(const std::filesystem::path& dir, const world_manifest& m,
+                                                           const std::string& set, const chunk_key& k) {
+    chunk_record c = read_listed_chunk(dir, m, k);
+    appearance_table t = load_chunk_table(dir, set, c);
+    return std::make_shared<const chunk_walker>(std::move(c.dag), t, 1);
+}
+
+// The chunks of `cut` (a LOD selection, world/lod_select.hpp) walked as one, in world voxels.
+inline placed_walker<chunk_walker> cut_walker(const std::filesystem::path& dir, const world_manifest& m,
+                                              const std::string& set, std::span<const chunk_key> cut) {
+    placed_walker<chunk_walker> w;
+    for (const chunk_key& k : cut) w.add(chunk_placement(m.grid, k), chunk_walker_of(dir, m, set, k));
+    return w;
+}
+
+namespace chunk_tables_detail {
+
+inline std::vector<glm::ivec3> chunk_voxels_of(const chunk_record& c) {
+    std::vector<glm::ivec3> out;
+    out.reserve(c.voxel_count);
+    for (const decoded_voxel& v : decode_svdag(c.dag)) out.push_back(v.position);
+    return out;
+}
+
+// A table of voxels in the world's space moved to the chunk's own voxels. Chunk corners are
+// multiples of the chunk edge (16 at least), so the ordinal order (bricks of 4) is kept.
+inline void move_to_chunk(appearance_table& t, glm::ivec3 corner) {
+    for (glm::ivec3& v : t.voxels) v -= corner;
+    if (!std::is_sorted(t.voxels.begin(), t.voxels.end(), ordinal_less))
+        fail("appearance chunk tables: a chunk corner (", corner.x, ", ", corner.y, ", ", corner.z,
+             ") that is not a multiple of 4 reorders the rows");
+}
+
+inline void add_stats(precompute_stats& sum, const precompute_stats& s) {
+    sum.voxels += s.voxels, sum.rays += s.rays, sum.hits += s.hits, sum.seconds += s.seconds;
+}
+
+}  // namespace chunk_tables_detail
+
+// The tables of every chunk of the world in `dir` (world/build/world_build.hpp) whose LOD 0
+// voxels were made from `mesh`: `scene` holds its triangles in the world's voxel space (the
+// map world/build/mesh_source.hpp voxelizes with: io::make_grid_map(mesh.bounds(), resolution)).
+template <class Scene>
+chunk_tables_report build_chunk_tables(const Scene& scene, const io::triangle_mesh& mesh,
+                                       const std::filesystem::path& dir, const chunk_tables_options& o) {
+    using namespace chunk_tables_detail;
+    if (o.set.empty() || o.set.find_first_of("/\\") != std::string::npos || o.set == "." || o.set == "..")
+        fail("appearance chunk tables: the set's name \"", o.set, "\" must be one folder name");
+    auto start = std::chrono::steady_clock::now();
+    mesh.validate();
+    const world_manifest m = read_manifest(dir);
+    chunk_tables_report report;
+    report.lods.resize(std::size_t(m.grid.top_lod) + 1);
+    auto options_for = [&](record_kind kind) {
+        return precompute_options{.kind = kind, .sampling = o.sampling, .opacity_strata = o.opacity_strata,
+                                  .threads = o.threads, .light = {}};
+    };
+    for (const manifest_chunk& listed : m.chunks) {  // by LOD: every child is done before its parent
+        const chunk_key& k = listed.key;
+        chunk_record c = read_listed_chunk(dir, m, k);
+        std::vector<glm::ivec3> voxels = chunk_voxels_of(c);
+        precompute_stats stats;
+        appearance_table t;
+        if (k.lod == 0 && !o.finest_from.empty()) {
+            t = load_chunk_table(dir, o.finest_from, c);
+        } else if (k.lod == 0) {
+            const glm::ivec3 corner = chunk_placement(m.grid, k).origin;
+            for (glm::ivec3& v : voxels) v += corner;
+            t = build_table(triangle_surfaces{scene, mesh}, std::move(voxels), options_for(o.finest), &stats);
+            move_to_chunk(t, corner);
+        } else {
+            // The children side by side in the finer voxels of this chunk's region, [0, 2C)^3.
+            placed_walker<chunk_walker> below;
+            for (int octant = 0; octant < 8; ++octant) {
+                glm::ivec3 step(octant & 1, (octant >> 1) & 1, octant >> 2);
+                chunk_key child{k.lod - 1, k.cell * 2 + step};
+                if (m.find(child))
+                    below.add({step * m.grid.edge(), 1, m.grid.edge()}, chunk_walker_of(dir, m, o.set, child));
+            }
+            t = resample(below, std::move(voxels), options_for(o.coarser), &stats);
+        }
+        auto path = chunk_table_path(dir, o.set, k);
+        std::filesystem::create_directories(path.parent_path());
+        save_table(t, path);
+        add_stats(report.lods[std::size_t(k.lod)], stats);
+        if (o.progress) o.progress(k, stats);
+    }
+    report.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    return report;
+}
+
+}  // namespace voxray::appearance
