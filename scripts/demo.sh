@@ -62,6 +62,9 @@ DATA="${VOXRAY_DATA_DIR:-$ROOT/../shared/data}"
 echo "== filtered appearance: the small tree at 128^3 against its triangles (Embree, 256 samples a pixel), averages and ours"
 "$VOXRAY" appearance-bench "$DATA/mesh/small_tree/scene.gltf" --resolution 128 --views 1 --threads 2 \
     --images "$OUT/appearance" 2>/dev/null || status=1
+echo "== filtered appearance in a world's LOD chunks: the bunny at 128^3 in 16^3 chunks, ours against average-colour chunks, both against all LOD 0"
+"$VOXRAY" appearance-world-bench "$DATA/mesh/stanford_bunny.ply" --resolution 128 --chunk-bits 4 --views 1 --size 128 \
+    --threads 2 --images "$OUT/appearance" 2>/dev/null || status=1
 echo "== moving entities: 3,000 deer and trees (shared models) over builtin:terrain:512, 6 frames of their motion (naadf, vulkan), then checked"
 /usr/bin/python3 "$ROOT/scripts/make_entity_scene.py" "$OUT/herd.json" --world builtin:terrain:512 --count 3000 \
     --extent 512 512 131 --data "$DATA"
@@ -69,5 +72,5 @@ mkdir -p "$OUT/entities"
 "$VOXRAY" render "$OUT/herd.json" --frames 6 --structure naadf --backend vulkan --width 960 --height 540 \
     --out "$OUT/entities/frame.png" 2>/dev/null
 "$VOXRAY" check "$OUT/herd.json" --frames 2 --rays 20000 --backends cpu,vulkan 2>/dev/null | tail -n 5 || status=1
-echo "== images (entities/frame_*.png, coloured_*.png, appearance/*.png too), results.jsonl, mesh.jsonl, terrain64_level2.glb, mesh_raster_*.png, world_raster_frames/raster_and_traced_*.png, plots (mrays.png, speed_vs_memory.png, steps.png) and table.md in $OUT"
+echo "== images (entities/frame_*.png, coloured_*.png, appearance/*.png (world strips too)), results.jsonl, mesh.jsonl, terrain64_level2.glb, mesh_raster_*.png, world_raster_frames/raster_and_traced_*.png, plots (mrays.png, speed_vs_memory.png, steps.png) and table.md in $OUT"
 exit ${status}
