@@ -46,9 +46,11 @@ foreach(root ${roots})
         if(h MATCHES "^voxray/(generated|embree|nanovdb|mpi)/" OR (backend AND NOT TARGET voxray::${CMAKE_MATCH_1}))
             continue()
         endif()
-        # The world's frame passes run on the CPU lanes where no device runs them, and the
-        # scenes' brute-force reference walks dense grids on them: voxray::cpu.
-        if((h STREQUAL "voxray/world/frame/frame.hpp" OR h STREQUAL "voxray/entities/reference.hpp") AND NOT TARGET voxray::cpu)
+        # Core headers that run on the CPU's lanes (the world's frame passes where no device
+        # runs them, the scenes' brute-force reference, a world's appearance tables) say so
+        # in an #error without voxray::cpu: that line is the list.
+        file(STRINGS ${root}/${h} needs_cpu REGEX "^#error \".* needs voxray::cpu")
+        if(needs_cpu AND NOT backend AND NOT TARGET voxray::cpu)
             continue()
         endif()
         string(APPEND includes "#include \"${h}\"\n")
