@@ -1,10 +1,10 @@
 // Appearance tables for a world's chunks (appearance/world/chunk_tables.hpp) and pieces walked
 // as one (appearance/world/placed_walker.hpp): one piece walks as its own walker, moved or
 // not; a world's LOD 0 tables are the rows of the whole model's table; its LOD 0 cut walks as
-// the whole model does; a coarse chunk of a solid block keeps its colour and opacity; a
-// missing or foreign table is an error naming its file.
+// the whole model does, and its LOD 1 and 2 cuts as the whole model's chain re-sampled in
+// memory; a missing or foreign table, a bad set name and a world of another mesh or resolution
+// are errors naming them.
 #include <gtest/gtest.h>
-
 
 #include <cmath>
 #include <filesystem>
@@ -70,7 +70,7 @@ hills_world build_hills_world(const io::triangle_mesh& mesh, const std::filesyst
     embree::triangle_scene scene(mesh, io::make_grid_map(mesh.bounds(), resolution));
     chunk_tables_options tables;
     tables.sampling = few_rays, tables.threads = 2;
-    chunk_tables_report report = build_chunk_tables(scene, mesh, dir, tables);
+    chunk_tables_report report = build_chunk_tables(scene, mesh, resolution, dir, tables);
     return {read_manifest(dir), report};
 }
 
@@ -219,7 +219,7 @@ TEST(appearance_chunk_tables, each_lods_cut_walks_as_the_whole_models_chain) {
     }
 }
 
-TEST(appearance_chunk_tables, a_missing_or_foreign_table_and_a_bad_set_name_are_errors_naming_them) {
+TEST(appearance_chunk_tables, foreign_or_missing_tables_bad_set_names_and_other_meshes_are_errors_naming_them) {
     io::triangle_mesh mesh = hills();
     test::temp_dir dir;
     const world_manifest m = build_hills_world(mesh, dir.path).manifest;
@@ -249,9 +249,20 @@ TEST(appearance_chunk_tables, a_missing_or_foreign_table_and_a_bad_set_name_are_
         embree::triangle_scene scene(mesh, io::make_grid_map(mesh.bounds(), resolution));
         chunk_tables_options outside;
         outside.set = "../outside";
-        build_chunk_tables(scene, mesh, dir.path, outside);
+        build_chunk_tables(scene, mesh, resolution, dir.path, outside);
     });
     EXPECT_NE(e.find("\"../outside\" must be one folder name"), std::string::npos) << e;
+
+    // Tables of a world built from another mesh, or at another resolution.
+    io::triangle_mesh moved = mesh;
+    moved.positions[0].y += 0.5;
+    for (auto [other, at] : {std::pair{&moved, resolution}, std::pair{&mesh, resolution + 8}}) {
+        e = test::error_of([&] {
+            embree::triangle_scene scene(*other, io::make_grid_map(other->bounds(), at));
+            build_chunk_tables(scene, *other, at, dir.path, chunk_tables_options{});
+        });
+        EXPECT_NE(e.find("was not built from this mesh at resolution " + std::to_string(at)), std::string::npos) << e;
+    }
 }
 
 }  // namespace

@@ -112,7 +112,8 @@ int appearance_world_bench(const world_bench_options& o) {
 
     auto start = std::chrono::steady_clock::now();
     world_build_options build;
-    build.chunk_bits = o.chunk_bits, build.density = 1, build.threads = o.threads, build.replace = true;
+    build.chunk_bits = o.chunk_bits, build.density = 1, build.threads = o.threads;
+    build.replace = o.dir.empty();  // a --dir that holds another world is refused, not replaced
     build_world(mesh_source(mesh, o.resolution), dir, build);
     const world_manifest m = read_manifest(dir);
     std::fprintf(stderr, "%s at %d: world of %zu chunks, LOD 0..%d, built in %.1f s\n", scene_name.c_str(),
@@ -121,9 +122,11 @@ int appearance_world_bench(const world_bench_options& o) {
     using appearance::record_kind;
     appearance::chunk_tables_options tables;
     tables.set = "ours", tables.threads = o.threads;
-    appearance::chunk_tables_report ours_report = appearance::build_chunk_tables(scene, mesh, dir, tables);
+    appearance::chunk_tables_report ours_report =
+        appearance::build_chunk_tables(scene, mesh, o.resolution, dir, tables);
     tables.set = "averages", tables.coarser = record_kind::averages, tables.finest_from = "ours";
-    appearance::chunk_tables_report averages_report = appearance::build_chunk_tables(scene, mesh, dir, tables);
+    appearance::chunk_tables_report averages_report =
+        appearance::build_chunk_tables(scene, mesh, o.resolution, dir, tables);
     auto coarse = [](const appearance::chunk_tables_report& r) {
         double s = 0;
         std::uint64_t v = 0;
@@ -168,9 +171,9 @@ int appearance_world_bench(const world_bench_options& o) {
         const std::vector<std::uint8_t> ref8 = srgb8(ref);
         std::vector<std::vector<std::uint8_t>> strip{ref8};
         for (const chain& ch : chains) {
+            const auto walker = appearance::cut_walker(dir, m, ch.set, cut);  // the chunks, read
             auto walk_start = std::chrono::steady_clock::now();
-            std::vector<appearance_pixel> px =
-                appearance::cut_walker(dir, m, ch.set, cut).walk(rays, walk_light, o.threads);
+            std::vector<appearance_pixel> px = walker.walk(rays, walk_light, o.threads);
             double walk_seconds = seconds_since(walk_start);
             std::size_t hits = 0, coarse_hits = 0;
             for (const appearance_pixel& p : px)
@@ -238,7 +241,8 @@ command add_appearance_world_bench(CLI::App& parent) {
         ->check(finite_range(0.05, 100.0))->capture_default_str();
     app->add_option("--threads", o->threads, "threads of the tables and the walks")
         ->check(CLI::Range(1u, 256u))->capture_default_str();
-    app->add_option("--dir", o->dir, "the world's folder, kept (default: a scratch folder, removed at the end)");
+    app->add_option("--dir", o->dir, "the world's folder, kept; one that holds another world is refused "
+                                     "(default: a scratch folder, removed at the end)");
     app->add_option("--json", o->json, "write one JSON line per view and chain after a header line");
     app->add_option("--images", o->images, "write each view's strip (all LOD 0 | ours | averages) here as PNG");
     return {app, [o] { return appearance_world_bench(*o); }};

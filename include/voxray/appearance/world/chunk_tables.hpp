@@ -32,6 +32,8 @@
 #include "voxray/cpu/appearance_walk.hpp"
 #include "voxray/svdag/decode.hpp"
 #include "voxray/svdag/svdag.hpp"
+#include "voxray/world/build/mesh_source.hpp"
+#include "voxray/world/build/world_build.hpp"
 #include "voxray/world/manifest.hpp"
 
 namespace voxray::appearance {
@@ -121,11 +123,12 @@ inline void add_stats(precompute_stats& sum, const precompute_stats& s) {
 
 }  // namespace chunk_tables_detail
 
-// The tables of every chunk of the world in `dir` (world/build/world_build.hpp) whose LOD 0
-// voxels were made from `mesh`: `scene` holds its triangles in the world's voxel space (the
-// map world/build/mesh_source.hpp voxelizes with: io::make_grid_map(mesh.bounds(), resolution)).
+// The tables of every chunk of the world in `dir`, built (world/build/world_build.hpp) from
+// mesh_source(mesh, resolution): a world of another mesh or resolution is an error (its
+// manifest's source hash says). `scene` holds the triangles in the world's voxel space (the
+// map mesh_source voxelizes with: io::make_grid_map(mesh.bounds(), resolution)).
 template <class Scene>
-chunk_tables_report build_chunk_tables(const Scene& scene, const io::triangle_mesh& mesh,
+chunk_tables_report build_chunk_tables(const Scene& scene, const io::triangle_mesh& mesh, int resolution,
                                        const std::filesystem::path& dir, const chunk_tables_options& o) {
     using namespace chunk_tables_detail;
     if (o.set.empty() || o.set.find_first_of("/\\") != std::string::npos || o.set == "." || o.set == "..")
@@ -133,6 +136,9 @@ chunk_tables_report build_chunk_tables(const Scene& scene, const io::triangle_me
     auto start = std::chrono::steady_clock::now();
     mesh.validate();
     const world_manifest m = read_manifest(dir);
+    if (std::uint32_t built = world_source_hash(mesh_source_hash(mesh, resolution), m); built != m.source_hash)
+        fail("appearance chunk tables: the world in ", dir.string(), " was not built from this mesh at resolution ",
+             resolution, " (its manifest's source hash is ", m.source_hash, ", this mesh's ", built, ")");
     chunk_tables_report report;
     report.lods.resize(std::size_t(m.grid.top_lod) + 1);
     auto options_for = [&](record_kind kind) {

@@ -20,6 +20,17 @@ namespace voxray {
 
 inline constexpr int max_world_mesh_resolution = 1 << 16;
 
+// The hash of a mesh_source: of the mesh's positions, triangles and groups and the resolution
+// (what a world build records in its manifest, with its options: world_source_hash).
+inline std::uint32_t mesh_source_hash(const io::triangle_mesh& mesh, int resolution) {
+    fnv64 h;
+    h.bytes(mesh.positions.data(), mesh.positions.size() * sizeof(mesh.positions[0]));
+    h.bytes(mesh.triangles.data(), mesh.triangles.size() * sizeof(mesh.triangles[0]));
+    h.bytes(mesh.groups.data(), mesh.groups.size() * sizeof(mesh.groups[0]));
+    h.bytes(&resolution, sizeof resolution);
+    return std::uint32_t(h.h ^ (h.h >> 32));
+}
+
 class mesh_source {
 public:
     // `max_cell_tests`: the bound on the voxelization's work (voxelize_options), scaled
@@ -46,14 +57,7 @@ public:
     }
 
     box3i bounds() const { return {glm::ivec3(0), map_.dims}; }
-    std::uint32_t hash() const {
-        fnv64 h;
-        h.bytes(mesh_->positions.data(), mesh_->positions.size() * sizeof(mesh_->positions[0]));
-        h.bytes(mesh_->triangles.data(), mesh_->triangles.size() * sizeof(mesh_->triangles[0]));
-        h.bytes(mesh_->groups.data(), mesh_->groups.size() * sizeof(mesh_->groups[0]));
-        h.bytes(&resolution_, sizeof resolution_);
-        return std::uint32_t(h.h ^ (h.h >> 32));
-    }
+    std::uint32_t hash() const { return mesh_source_hash(*mesh_, resolution_); }
     const palette& colours() const { return palette_; }
 
     // The cells that tiles with triangles overlap.

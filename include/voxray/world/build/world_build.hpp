@@ -159,6 +159,15 @@ inline void remove_unlisted_chunks(const std::filesystem::path& dir, const world
 
 }  // namespace world_build_detail
 
+// The source hash a build of a source of hash `source` with the options `m` records would
+// write in its manifest: what says whether a world was built from a given source.
+inline std::uint32_t world_source_hash(std::uint32_t source, const world_manifest& m) {
+    world_build_options o;
+    o.chunk_bits = m.grid.chunk_bits, o.attributes = m.attributes, o.colour_error = m.colour_error;
+    o.density = m.density;
+    return world_build_detail::options_hash(source, o);
+}
+
 // The steps of a build, shared by the whole build (build_world below) and the sharded
 // one (world/build/sharded_build.hpp): the world's header from the source and options,
 // chunk levels built on all threads, and the manifest.
