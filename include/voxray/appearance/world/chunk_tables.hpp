@@ -148,13 +148,13 @@ chunk_tables_report build_chunk_tables(const Scene& scene, const io::triangle_me
     for (const manifest_chunk& listed : m.chunks) {  // by LOD: every child is done before its parent
         const chunk_key& k = listed.key;
         chunk_record c = read_listed_chunk(dir, m, k);
-        std::vector<glm::ivec3> voxels = chunk_voxels_of(c);
         precompute_stats stats;
         appearance_table t;
         if (k.lod == 0 && !o.finest_from.empty()) {
             t = load_chunk_table(dir, o.finest_from, c);
         } else if (k.lod == 0) {
             const glm::ivec3 corner = chunk_placement(m.grid, k).origin;
+            std::vector<glm::ivec3> voxels = chunk_voxels_of(c);
             for (glm::ivec3& v : voxels) v += corner;
             t = build_table(triangle_surfaces{scene, mesh}, std::move(voxels), options_for(o.finest), &stats);
             move_to_chunk(t, corner);
@@ -167,7 +167,7 @@ chunk_tables_report build_chunk_tables(const Scene& scene, const io::triangle_me
                 if (m.find(child))
                     below.add({step * m.grid.edge(), 1, m.grid.edge()}, chunk_walker_of(dir, m, o.set, child));
             }
-            t = resample(below, std::move(voxels), options_for(o.coarser), &stats);
+            t = resample(below, chunk_voxels_of(c), options_for(o.coarser), &stats);
         }
         auto path = chunk_table_path(dir, o.set, k);
         std::filesystem::create_directories(path.parent_path());
