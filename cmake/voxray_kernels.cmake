@@ -196,7 +196,7 @@ function(voxray_add_appearance_walk name kernel_files out)
 #include \"voxray/appearance/walk.inc\"
 ")
     set(files ${kernel_files})
-    foreach(f ordinal.h record.h faithful_record.h walk_types.h)
+    foreach(f ordinal.h record.h faithful_record.h walk_types.h walk_visit.h)
         list(APPEND files ${PROJECT_SOURCE_DIR}/include/voxray/appearance/${f})
     endforeach()
     list(APPEND files ${walk})

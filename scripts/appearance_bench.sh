@@ -8,9 +8,10 @@
 # against scikit-image's on the strips, and keeps view 0's strips in docs/bench/appearance/.
 # Then the same with cast shadows (--shadows) on two scenes at 128^3: appearance_shadows.*.
 # Then appearance in a world's LOD chunks (appearance-world-bench): appearance_world.*.
-# About 35 minutes on 2 shared cores.
+# Then the walk's speed on each structure and CPU backend (appearance-walk-bench): appearance_walk.*.
+# About 37 minutes on 2 shared cores.
 # Override SCENES (space-separated), RESOLUTIONS, REFERENCE_SIDE (16: 256 samples a pixel),
-# SHADOW_SCENES, PARTS ("plain shadows world": which of the three to run).
+# SHADOW_SCENES, PARTS ("plain shadows world walk": which of the four to run).
 set -euo pipefail
 source "$(dirname "${BASH_SOURCE[0]}")/setup.sh"
 DATA="${VOXRAY_DATA_DIR:-$ROOT/../shared/data}"
@@ -56,13 +57,13 @@ run_matrix() {
     cp "$strips"/*_view0_*.png "$OUT/$name/"
 }
 
-# PARTS: which matrices (both by default).
-if [[ " ${PARTS:-plain shadows world} " == *" plain "* ]]; then
+# PARTS: which parts (all by default).
+if [[ " ${PARTS:-plain shadows world walk} " == *" plain "* ]]; then
     run_matrix appearance "--lod" "${RESOLUTIONS:-128 256}" "${scenes[@]}"
 fi
 # Cast shadows (--shadows): two scenes at 128^3, the bunny (a solid, self-shadowing) and the
 # small tree (foliage, partial shadows), about 4 minutes.
-if [[ " ${PARTS:-plain shadows world} " == *" shadows "* ]]; then
+if [[ " ${PARTS:-plain shadows world walk} " == *" shadows "* ]]; then
     SCENES="${SHADOW_SCENES:-$DATA/mesh/stanford_bunny.ply $DATA/mesh/small_tree/scene.gltf}"
     relative_scenes
     run_matrix appearance_shadows "--shadows" "128" "${scenes[@]}"
@@ -71,7 +72,7 @@ fi
 # frames of every chunk at LOD 0, at StreamingFactor 2.0: the kitchen at 512^3 in 64^3 chunks
 # seen from inside it (a third of the orbit's distance: near chunks at LOD 0, far ones coarse),
 # and the bunny at 256^3 in 32^3 chunks from the orbit (every chunk coarse). About 3 minutes.
-if [[ " ${PARTS:-plain shadows world} " == *" world "* ]]; then
+if [[ " ${PARTS:-plain shadows world walk} " == *" world "* ]]; then
     name=appearance_world results="$OUT/appearance_world_results.jsonl"
     strips="$(realpath -m --relative-to="$ROOT" "$BUILD_DIR")/${name}_strips"
     rm -rf "$results" "$strips" "${OUT:?}/$name"
@@ -90,4 +91,22 @@ if [[ " ${PARTS:-plain shadows world} " == *" world "* ]]; then
     /usr/bin/python3 scripts/appearance_world_table.py "$results" --strips "$strips" --out "$OUT/${name}_table.md" \
         --doc docs/appearance.md
     cp "$strips"/*_view0.png "$OUT/$name/"
+fi
+# The walk's speed (the render target: 256^2 pixels x 4 rays at 256^3, 2 threads): the bunny
+# (a closed surface) and the small tree (foliage: more voxels blended a ray) at 256^3, on
+# each structure and CPU backend. About 2 minutes.
+if [[ " ${PARTS:-plain shadows world walk} " == *" walk "* ]]; then
+    results="$OUT/appearance_walk_results.jsonl"
+    rm -f "$results"
+    for mesh in stanford_bunny.ply small_tree/scene.gltf; do
+        scene="$(realpath -m --relative-to="$ROOT" "$DATA/mesh/$mesh")"
+        echo "== appearance-walk-bench $scene at 256"
+        part="$OUT/appearance_walk_part.jsonl"
+        "$TOOL" appearance-walk-bench "$scene" --resolution 256 --threads 2 --runs 5 --json "$part"
+        if [ -s "$results" ]; then tail -n +2 "$part" >> "$results"; else cp "$part" "$results"; fi
+        rm -f "$part"
+    done
+    echo "== table (appearance_walk)"
+    /usr/bin/python3 scripts/appearance_walk_table.py "$results" --out "$OUT/appearance_walk_table.md" \
+        --doc docs/appearance.md
 fi

@@ -1,6 +1,6 @@
 #version 450
 // A user's compute shader that traces a ray and evaluates the hit voxel's appearance record
-// with the installed includes.
+// with the installed includes, and walks the ray front to back with its own trace.
 #extension GL_GOOGLE_include_directive : require
 #include "voxray/shaders/appearance.glsl"
 #include "voxray/shaders/dense_grid.glsl"
@@ -12,6 +12,7 @@ layout(push_constant) uniform addresses {
 } a;
 layout(std430, binding = 0) readonly buffer rays_buffer { vx_ray rays[]; };
 layout(std430, binding = 1) writeonly buffer colours_buffer { vec4 colours[]; };
+layout(std430, binding = 2) writeonly buffer walked_buffer { vec4 walked[]; };
 
 void main() {
     vx_ray r = rays[gl_GlobalInvocationID.x];
@@ -27,4 +28,11 @@ void main() {
         }
     }
     colours[gl_GlobalInvocationID.x] = colour;
+
+    vx_app_light light = vx_app_light(a.light.x, a.light.y, a.light.z, a.light.w);
+    vx_app_walk_cursor c = vx_app_walk_begin(r, vx_app_walk_state_start(), 16u);
+    while (c.going != 0u)
+        c = vx_app_walk_visit(vx_words(a.index), vx_words(a.records), vx_words(a.faces), VX_APP_KIND_COMPACT, light,
+                              1.0e-3, 16u, 0u, vx_dense_grid_trace(vx_words(a.blob), c.r, VX_MODE_CLOSEST), c);
+    walked[gl_GlobalInvocationID.x] = vec4(c.s.w.r, c.s.w.g, c.s.w.b, c.s.w.transmittance);
 }

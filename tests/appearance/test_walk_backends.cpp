@@ -1,5 +1,6 @@
 // The compositing walk on every backend (issue 25's determinism target): the CPU's scalar
-// lanes, OpenCL and Vulkan give the same pixels bit for bit, for every registered
+// lanes, its SIMD lanes (8 and 16 wide where the CPU has them), OpenCL and Vulkan give the
+// same pixels bit for bit, for every registered
 // structure and every record kind, on tables precomputed from a coloured mesh; opaque
 // records stop at the first-hit kernel's voxel on every backend.
 #include <gtest/gtest.h>
@@ -46,6 +47,14 @@ std::string first_difference(const std::vector<appearance_pixel>& want, const st
     return "";
 }
 
+// The SIMD widths this CPU runs (the CI machine has both).
+std::vector<unsigned> simd_widths() {
+    std::vector<unsigned> widths;
+    if (kernels::cpu_has_avx2()) widths.push_back(8);
+    if (kernels::cpu_has_avx512()) widths.push_back(16);
+    return widths;
+}
+
 const appearance_light kitchen_light{.to_light = glm::normalize(glm::vec3(0.3f, 1.0f, 0.5f)), .ambient = 0.2f};
 
 struct walk_scene {
@@ -89,7 +98,12 @@ TEST(appearance_walk_backends, every_backend_gives_the_same_pixels_bit_for_bit) 
         for (const auto& [name, table] : s.tables) {
             SCOPED_TRACE(std::string(kernel::name) + ", " + name + " records");
             std::vector<appearance_pixel> cpu =
-                appearance_walker<kernel>({blob.begin(), blob.end()}, table, 2).walk(s.rays, light);
+                appearance_walker<kernel, cpu_scalar>({blob.begin(), blob.end()}, table, 2).walk(s.rays, light);
+            for (unsigned width : simd_widths()) {
+                appearance_walker<kernel> simd({blob.begin(), blob.end()}, table, {.threads = 2, .simd_width = width});
+                ASSERT_EQ(simd.simd_width(), width);
+                EXPECT_EQ(first_difference(cpu, simd.walk(s.rays, light)), "") << width << " SIMD lanes against scalar";
+            }
             std::vector<appearance_pixel> opencl = opencl_appearance_walker<kernel>(blob, table).walk(s.rays, light);
             std::vector<appearance_pixel> vulkan = vulkan_appearance_walker<kernel>(blob, table).walk(s.rays, light);
             EXPECT_EQ(first_difference(cpu, opencl), "") << "OpenCL against the CPU";
@@ -123,8 +137,10 @@ TEST(appearance_walk_backends, ray_counts_that_are_not_a_multiple_of_the_group_a
     const appearance_table& table = s.tables[1].second;
     dense_grid grid(s.model);
     using kernel = kernels::dense_grid_kernel;
-    std::vector<appearance_pixel> cpu = appearance_walker<kernel>({grid.blob().begin(), grid.blob().end()}, table, 1)
-                                            .walk(rays, {});
+    std::vector<appearance_pixel> cpu =
+        appearance_walker<kernel, cpu_scalar>({grid.blob().begin(), grid.blob().end()}, table, 1).walk(rays, {});
+    EXPECT_EQ(first_difference(cpu, appearance_walker<kernel>({grid.blob().begin(), grid.blob().end()}, table, 1)
+                                        .walk(rays, {})), "") << "the SIMD lanes";
     vulkan_options through_staging;
     through_staging.force_staging = true;
     vulkan_appearance_walker<kernel> staged(grid.blob(), table, through_staging);

@@ -26,14 +26,13 @@
 
 #if VOXRAY_WITH_EMBREE
 #include "appearance_pictures.hpp"
+#include "appearance_structures.hpp"
 #include "voxray/appearance/precompute.hpp"
 #include "voxray/appearance/resample.hpp"
 #include "voxray/appearance/shadows.hpp"
 #include "voxray/cpu/appearance_walk.hpp"
-#include "voxray/brickmap/brickmap.hpp"
 #include "voxray/dense_grid/dense_grid.hpp"
 #include "voxray/embree/triangle_scene.hpp"
-#include "voxray/naadf/naadf.hpp"
 #include "voxray/gltf/coloured_mesh.hpp"
 #endif
 
@@ -53,8 +52,6 @@ struct appearance_bench_options {
     bool shadows = false;              // cast shadows in the reference, precomputed ones in the walks
     std::string json, images;
 };
-
-const std::vector<std::string> walk_structures = {"dense", "brickmap", "naadf"};
 
 #if VOXRAY_WITH_EMBREE
 
@@ -80,19 +77,6 @@ struct walked_picture {
     double seconds = 0, steps = 0, visits = 0;  // steps and visits: means a ray
 };
 
-// The structure the walk traces: its name and its words.
-struct walk_structure {
-    std::string name;
-    std::vector<std::uint32_t> blob;
-};
-
-walk_structure build_structure(const std::string& name, const voxel_model& model) {
-    auto words = [](std::span<const std::uint32_t> b) { return std::vector<std::uint32_t>(b.begin(), b.end()); };
-    if (name == "brickmap") return {name, words(brickmap<>(model).blob())};
-    if (name == "naadf") return {name, words(naadf(model).blob())};
-    return {name, words(dense_grid(model).blob())};
-}
-
 // Ours at `resolution`, re-sampled through the walk from ours at twice it (made from the
 // triangles there): a LOD level as a chain builds it. Its voxels are the
 // finer level's coarser_voxels, so it has a structure of its own (`structure`).
@@ -106,18 +90,10 @@ method_table resampled_method(const io::triangle_mesh& mesh, int resolution, con
     appearance_walker<kernels::dense_grid_kernel> walker({fine_grid.blob().begin(), fine_grid.blob().end()},
                                                          fine_table, 1);
     voxel_model coarse = appearance::coarser_voxels(fine);
-    structure = build_structure(structure_name, coarse);
+    structure = build_walk_structure(structure_name, coarse);
     method_table m{"ours_lod", {}, {}, 0};
     m.table = appearance::resample(walker, coarse, o, &m.stats);
     return m;
-}
-
-// Calls f.template operator()<Kernel>() with the kernel of structure `name` (walk_structures).
-template <class F>
-decltype(auto) with_kernel(const std::string& name, F&& f) {
-    if (name == "naadf") return f.template operator()<kernels::naadf_kernel>();
-    if (name == "brickmap") return f.template operator()<kernels::brickmap_kernel>();
-    return f.template operator()<kernels::dense_grid_kernel>();
 }
 
 // A copy of `m` with precomputed shadows of `light`, walked over `s`; their time goes to
@@ -125,7 +101,7 @@ decltype(auto) with_kernel(const std::string& name, F&& f) {
 method_table with_shadows(const walk_structure& s, const method_table& m, const shading& light, unsigned threads) {
     method_table shadowed = m;
     appearance::precompute_stats stats;
-    with_kernel(s.name, [&]<class Kernel>() {
+    with_walk_kernel(s.name, [&]<class Kernel>() {
         appearance_walker<Kernel> walker(s.blob, m.table, threads);
         appearance::precompute_shadows(walker, shadowed.table, light.to_light, {.threads = threads}, &stats);
     });
@@ -150,7 +126,7 @@ std::vector<appearance_pixel> walk_rays(const std::vector<std::uint32_t>& blob, 
 walked_picture walk_picture(const walk_structure& s, const method_table& m, const std::vector<ray>& rays,
                             const shading& light, int size, unsigned threads) {
     walked_picture w;
-    std::vector<appearance_pixel> px = with_kernel(s.name, [&]<class Kernel>() {
+    std::vector<appearance_pixel> px = with_walk_kernel(s.name, [&]<class Kernel>() {
         return walk_rays<Kernel>(s.blob, m, rays, light, threads, w.seconds);
     });
     w.picture = blend_four(px, size, size, light.background);
@@ -178,7 +154,7 @@ int appearance_bench(const appearance_bench_options& o) {
     std::string scene_name = folder + "/" + mesh_path.filename().string();
     std::fprintf(stderr, "%s at %d: %llu voxels\n", scene_name.c_str(), o.resolution,
                  (unsigned long long)model.voxel_count());
-    walk_structure structure = build_structure(o.structure, model);
+    walk_structure structure = build_walk_structure(o.structure, model);
 
     // Averages, SGGX, faithful and ours do not depend on the light; six directions is made for each.
     method_table averages = precompute_method(scene, mesh, model, "averages", appearance::record_kind::averages, {},

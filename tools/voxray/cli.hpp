@@ -37,6 +37,7 @@ command add_mesh(CLI::App& parent);
 command add_mesh_bench(CLI::App& parent);
 command add_appearance_bench(CLI::App& parent);
 command add_appearance_world_bench(CLI::App& parent);
+command add_appearance_walk_bench(CLI::App& parent);
 
 inline const std::vector<std::string> ray_set_names = {"primary", "secondary", "shadow"};
 

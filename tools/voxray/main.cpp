@@ -19,7 +19,7 @@ int main(int argc, char** argv) {
     std::vector<command> commands = {add_info(app),  add_render(app),      add_check(app),
                                      add_bench(app), add_world_build(app), add_world_fly(app),
                                      add_mesh(app),  add_mesh_bench(app), add_appearance_bench(app),
-                                     add_appearance_world_bench(app)};
+                                     add_appearance_world_bench(app), add_appearance_walk_bench(app)};
     try {
         app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {

@@ -99,32 +99,17 @@ VX_APP_FN float vx_app_shade(vx_app_vec n, vx_app_light light) {
     return light.ambient + (1.0f - light.ambient) * vx_fmax(vx_app_dot(n, light.lx, light.ly, light.lz), 0.0f);
 }
 
-/* Quadrature node q (0..3) of a face: its mean normal (q = 0), or one of three normals on a
- * ring around it, 120 degrees apart, `spread` (the ring's tangent) away. The ring's frame
- * comes from the normal alone (Duff et al.'s branchless basis), so every backend gets it. */
-VX_APP_FN vx_app_vec vx_app_face_node(vx_app_vec n, float spread, uint q) {
-    float sign = n.z < 0.0f ? -1.0f : 1.0f;
-    float a = -1.0f / (sign + n.z), b = n.x * n.y * a;
-    vx_app_vec t, s;
-    t.x = 1.0f + sign * n.x * n.x * a, t.y = sign * b, t.z = -sign * n.x;
-    s.x = b, s.y = sign + n.y * n.y * a, s.z = -n.y;
-    float ct = q == 0u ? 0.0f : (q == 1u ? 1.0f : -0.5f);
-    float st = q < 2u ? 0.0f : (q == 2u ? 0.86602540f : -0.86602540f);
-    vx_app_vec m;
-    m.x = n.x + spread * (ct * t.x + st * s.x);
-    m.y = n.y + spread * (ct * t.y + st * s.y);
-    m.z = n.z + spread * (ct * t.z + st * s.z);
-    float inv = 1.0f / vx_sqrt(m.x * m.x + m.y * m.y + m.z * m.z);
-    m.x = m.x * inv, m.y = m.y * inv, m.z = m.z * inv;
-    return m;
-}
-
 /* The faces of a compact record along unit ray direction (dx, dy, dz): each face's colour,
- * shaded at four fixed quadrature nodes of equal weight (the mean normal and its ring), each
- * node weighted by the area it turns to the viewer, max(0, -n . d), and the face by its share
- * of the surface; side -1 takes the normals turned round (the faces seen from behind). Returns
- * the weighted colour sum in r, g, b, the sum of the weights in a, and the faces' mean
- * normals (as `side` turns them) weighted alike in n. */
+ * shaded at four fixed quadrature nodes of equal weight, each node weighted by the area it
+ * turns to the viewer, max(0, -m . d), and the face by its share of the surface; side -1
+ * takes the normals turned round (the faces seen from behind). Returns the weighted colour
+ * sum in r, g, b, the sum of the weights in a, and the faces' mean normals (as `side` turns
+ * them) weighted alike in n.
+ * The nodes are the face's mean normal n and three normals on a ring around it, 120 degrees
+ * apart, `spread` (the ring's tangent) away: m = (n + spread (c t + s u)) / sqrt(1 + spread^2)
+ * for (c, s) = (1, 0), (-1/2, +-sqrt(3)/2), in a frame (t, u) across n that comes from n alone
+ * (Duff et al.'s branchless basis), so every backend gets it. A node enters only through
+ * m . d and m . l, so a face takes n, t and u against d and l once, and its nodes from those. */
 VX_APP_FN vx_app_sample vx_app_compact_faces(VX_BLOB faces, uint first, uint count, float dx, float dy, float dz,
                                              vx_app_light light, float side) {
     vx_app_sample sum = vx_app_no_sample();
@@ -134,13 +119,25 @@ VX_APP_FN vx_app_sample vx_app_compact_faces(VX_BLOB faces, uint first, uint cou
         vx_app_vec n = vx_app_octahedral(vx_app_snorm(VX_APP_FACE_NORMAL_U(f1), 12u),
                                          vx_app_snorm(VX_APP_FACE_NORMAL_V(f1), 12u));
         float spread = vx_u2f(VX_APP_FACE_SPREAD(f1)) * (VX_APP_SPREAD_MAX / 255.0f);
+        float sign = n.z < 0.0f ? -1.0f : 1.0f;
+        float a = -1.0f / (sign + n.z), b = n.x * n.y * a;
+        vx_app_vec t, u;
+        t.x = 1.0f + sign * n.x * n.x * a, t.y = sign * b, t.z = -sign * n.x;
+        u.x = b, u.y = sign + n.y * n.y * a, u.z = -n.y;
+        /* the frame against the ray and the light, turned by `side`; the ring's part scaled by spread */
+        float nd = side * vx_app_dot(n, dx, dy, dz), nl = side * vx_app_dot(n, light.lx, light.ly, light.lz);
+        float td = side * spread * vx_app_dot(t, dx, dy, dz), tl = side * spread * vx_app_dot(t, light.lx, light.ly, light.lz);
+        float ud = side * spread * vx_app_dot(u, dx, dy, dz), ul = side * spread * vx_app_dot(u, light.lx, light.ly, light.lz);
+        float ring = 1.0f / vx_sqrt(1.0f + spread * spread);
         float area = 0.0f, lit = 0.0f, weight = vx_u2f(VX_APP_FACE_WEIGHT(f0));
         for (uint q = 0u; q < 4u; ++q) {
-            vx_app_vec m = vx_app_face_node(n, spread, q);
-            m.x = side * m.x, m.y = side * m.y, m.z = side * m.z;
-            float facing = vx_fmax(-vx_app_dot(m, dx, dy, dz), 0.0f) * 0.25f;
+            float c = q == 0u ? 0.0f : (q == 1u ? 1.0f : -0.5f);
+            float s = q < 2u ? 0.0f : (q == 2u ? 0.86602540f : -0.86602540f);
+            float scale = q == 0u ? 1.0f : ring;
+            float md = (nd + c * td + s * ud) * scale, ml = (nl + c * tl + s * ul) * scale;
+            float facing = vx_fmax(-md, 0.0f) * 0.25f;
             area = area + facing;
-            lit = lit + facing * vx_app_shade(m, light);
+            lit = lit + facing * (light.ambient + (1.0f - light.ambient) * vx_fmax(ml, 0.0f));
         }
         /* the face's own mean normal, by the area it shows (the nodes' would lean to the viewer) */
         sum.nx = sum.nx + weight * area * side * n.x;

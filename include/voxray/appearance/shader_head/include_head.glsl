@@ -19,5 +19,14 @@
 //   kind     VX_APP_KIND_AVERAGES, _COMPACT, _SIX or _SGGX, as the table's record_kind
 //   (dx, dy, dz) the unit direction the ray travels; light: vx_app_light { lx, ly, lz, ambient }
 //   vx_app_sample { float r, g, b, a, nx, ny, nz; }: linear colour, opacity, normal; blend front to back.
+// Or the whole compositing walk with your own trace (appearance/walk_visit.h): up to 16 voxels
+// front to back, until less than 1e-3 of the ray is left (no precomputed shadows: 0):
+//
+//   vx_app_walk_cursor c = vx_app_walk_begin(r, vx_app_walk_state_start(), 16u);
+//   while (c.going != 0u)
+//       c = vx_app_walk_visit(vx_words(index_address), vx_words(records_address), vx_words(faces_address),
+//                             VX_APP_KIND_COMPACT, light, 1.0e-3, 16u, 0u,
+//                             vx_dense_grid_trace(vx_words(blob_address), c.r, VX_MODE_CLOSEST), c);
+//   c.s.w: vx_app_walk_result { r, g, b, transmittance, t, x, y, z, ... } (pixel_layout.h)
 // The values are bit-identical to the C++ backends'. Compile with glslangValidator -V
 // --target-env vulkan1.2 -I<voxray prefix>/include.

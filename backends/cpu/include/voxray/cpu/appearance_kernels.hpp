@@ -9,4 +9,5 @@ namespace voxray::kernels::scalar {
 #include "voxray/appearance/record.h"
 #include "voxray/appearance/faithful_record.h"
 #include "voxray/appearance/walk_types.h"
+#include "voxray/appearance/walk_visit.h"
 }  // namespace voxray::kernels::scalar

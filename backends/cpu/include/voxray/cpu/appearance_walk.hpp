@@ -1,14 +1,18 @@
-// The compositing walk (appearance/walk.inc) on the CPU's scalar lanes, for any structure
-// kernel: many rays on a thread pool, each blended front to back through its voxels'
-// appearance records. The same source the GPUs run.
+// The compositing walk (appearance/walk.inc) on the CPU, for any structure kernel: many
+// rays on a thread pool, each blended front to back through its voxels' appearance records.
+// The same source the GPUs run. With voxray::cpu (the default) the walk goes in rounds over
+// a batch of rays: the closest hits of every ray still walking, on the SIMD stream the
+// tracer uses, then each ray's visit (appearance/walk_visit.h) on the scalar lanes. With
+// voxray::cpu_scalar each ray walks alone on the scalar lanes. Both give the same pixels
+// bit for bit: the SIMD stream's hits are the scalar kernel's.
 //
 //   voxray::appearance_walker<voxray::kernels::dense_grid_kernel> walker(blob, table);
 //   std::vector<voxray::appearance_pixel> out = walker.walk(rays, light);
 #pragma once
+#include <algorithm>
 #include <bit>
 #include <cmath>
 #include <cstdint>
-#include <memory>
 #include <span>
 #include <vector>
 
@@ -19,7 +23,7 @@
 #include "voxray/core/error.hpp"
 #include "voxray/core/ray.hpp"
 #include "voxray/cpu/appearance_kernels.hpp"
-#include "voxray/cpu/thread_pool.hpp"
+#include "voxray/cpu/cpu_backend.hpp"
 
 namespace voxray::kernels::scalar {
 #define VX_APP_WALK_NAME vx_app_walk
@@ -30,25 +34,35 @@ namespace voxray::kernels::scalar {
 
 namespace voxray {
 
-template <class Kernel>
+template <class Kernel, class Backend = cpu>
 class appearance_walker {
 public:
-    static constexpr const char* backend = "cpu";
+    static constexpr const char* backend = Backend::name;
 
     // `blob` is the structure's words, `table` the appearance of its voxels (its rows in the
-    // ordinal index's order); both are copied.
+    // ordinal index's order); both are copied. `threads` 0: one per hardware thread.
     appearance_walker(std::vector<std::uint32_t> blob, const appearance::appearance_table& table,
                       unsigned threads = 0)
-        : blob_(std::move(blob)), words_(table), pool_(std::make_unique<cpu_detail::thread_pool>(threads)) {}
+        : appearance_walker(std::move(blob), table, cpu_options{.threads = threads}) {}
+    // The same with the tracer's CPU options (threads or a shared pool, the SIMD width).
+    appearance_walker(std::vector<std::uint32_t> blob, const appearance::appearance_table& table, cpu_options options)
+        : blob_(std::move(blob)), words_(table), engine_(borrowing(std::move(options))) {
+        engine_.upload(blob_);  // borrowed: blob_'s buffer stays where it is when the walker moves
+    }
 
     // Rays' directions must be unit vectors (records are evaluated for them).
     std::vector<appearance_pixel> walk(std::span<const ray> rays, const appearance_light& light) const {
         std::vector<appearance_pixel> out(rays.size());
         const std::uint32_t shadows_at = words_.shadows.at_for(light);
-        constexpr std::size_t batch = 256;
-        pool_->parallel_for((rays.size() + batch - 1) / batch, [&](std::size_t b) {
-            for (std::size_t i = b * batch; i < std::min(rays.size(), (b + 1) * batch); ++i)
-                out[i] = walk_unchecked(rays[i], light, shadows_at);
+        std::size_t batches = (rays.size() + batch - 1) / batch;
+        engine_.pool()->parallel_for(batches, [&](std::size_t b) {
+            std::size_t begin = b * batch, count = std::min(rays.size(), begin + batch) - begin;
+            if (engine_.simd_width() == 1) {
+                for (std::size_t i = begin; i < begin + count; ++i)
+                    out[i] = std::bit_cast<appearance_pixel>(walk_unchecked(start(), rays[i], light, shadows_at).w);
+            } else {
+                walk_in_rounds(rays.subspan(begin, count), light, shadows_at, std::span(out).subspan(begin, count));
+            }
         });
         appearance::check_walked(out);
         return out;
@@ -56,6 +70,8 @@ public:
 
     // The table's record kind (VX_APP_KIND_*).
     std::uint32_t kind() const { return words_.kind; }
+    // Rays a lane group walks at once: 1 for the scalar lanes, else 8 or 16.
+    unsigned simd_width() const { return engine_.simd_width(); }
 
     // One ray on the calling thread (safe from many threads at once): what a coarser level's
     // table is re-sampled with (appearance/resample.hpp).
@@ -77,14 +93,53 @@ public:
     }
 
 private:
-    appearance_pixel walk_unchecked(const ray& r, const appearance_light& light, std::uint32_t shadows_at) const {
-        return std::bit_cast<appearance_pixel>(walk_unchecked(start(), r, light, shadows_at).w);
+    // Rays a thread walks in rounds at once: their cursors stay in its cache.
+    static constexpr std::size_t batch = 512;
+
+    // The walks of `rays` into `out`, in rounds: the closest hits of the rays still walking
+    // on the engine's SIMD lanes, then each one's visit.
+    void walk_in_rounds(std::span<const ray> rays, const appearance_light& light, std::uint32_t shadows_at,
+                        std::span<appearance_pixel> out) const {
+        namespace k = kernels::scalar;
+        const k::vx_app_light l = lane_light(light);
+        std::vector<k::vx_app_walk_cursor> cursors(rays.size());
+        std::vector<std::uint32_t> going;  // the cursors still walking
+        for (std::size_t i = 0; i < rays.size(); ++i) {
+            cursors[i] = k::vx_app_walk_begin(cpu_detail::to_lane(rays[i]), start(), light.max_visits);
+            if (cursors[i].going) going.push_back(std::uint32_t(i));
+        }
+        std::vector<ray> next(going.size());
+        std::vector<hit> hits(going.size());
+        while (!going.empty()) {
+            for (std::size_t j = 0; j < going.size(); ++j) next[j] = cpu_detail::from_lane(cursors[going[j]].r);
+            engine_.template trace_here<VX_MODE_CLOSEST>(std::span(next).first(going.size()),
+                                                          std::span(hits).first(going.size()));
+            std::size_t kept = 0;
+            for (std::size_t j = 0; j < going.size(); ++j) {
+                k::vx_app_walk_cursor& c = cursors[going[j]];
+                c = k::vx_app_walk_visit(words_.index.data(), words_.records.data(), words_.faces.data(), words_.kind,
+                                         l, light.cutoff, light.max_visits, shadows_at, cpu_detail::to_lane(hits[j]),
+                                         c);
+                if (c.going) going[kept++] = going[j];
+            }
+            going.resize(kept);
+        }
+        for (std::size_t i = 0; i < rays.size(); ++i) out[i] = std::bit_cast<appearance_pixel>(cursors[i].s.w);
     }
+
+    static cpu_options borrowing(cpu_options o) {
+        o.borrow_blob = true;
+        return o;
+    }
+
+    static kernels::scalar::vx_app_light lane_light(const appearance_light& light) {
+        return {light.to_light.x, light.to_light.y, light.to_light.z, light.ambient};
+    }
+
     state walk_unchecked(const state& s, const ray& r, const appearance_light& light, std::uint32_t shadows_at) const {
         static_assert(sizeof(kernels::scalar::vx_app_walk_result) == sizeof(appearance_pixel));
-        kernels::scalar::vx_app_light l{light.to_light.x, light.to_light.y, light.to_light.z, light.ambient};
-        kernels::scalar::vx_ray lane{r.origin.x,    r.origin.y,    r.origin.z,    r.tmin,
-                                     r.direction.x, r.direction.y, r.direction.z, r.tmax};
+        const kernels::scalar::vx_app_light l = lane_light(light);
+        const kernels::scalar::vx_ray lane = cpu_detail::to_lane(r);
         return kernels::scalar::vx_app_walk<Kernel>(blob_.data(), words_.index.data(), words_.records.data(),
                                                     words_.faces.data(), words_.kind, lane, l, light.cutoff,
                                                     light.max_visits, shadows_at, s);
@@ -92,7 +147,7 @@ private:
 
     std::vector<std::uint32_t> blob_;
     appearance::walk_words words_;
-    std::unique_ptr<cpu_detail::thread_pool> pool_;
+    typename Backend::template engine<Kernel> engine_;
 };
 
 }  // namespace voxray

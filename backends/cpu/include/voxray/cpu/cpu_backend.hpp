@@ -63,6 +63,17 @@ inline hit from_lane(const kernels::scalar::vx_hit& h) {
     return out;
 }
 
+inline kernels::scalar::vx_hit to_lane(const hit& h) {
+    return {h.t, h.voxel.x, h.voxel.y, h.voxel.z, std::uint32_t(h.normal), h.material, h.steps, h.status};
+}
+
+inline ray from_lane(const kernels::scalar::vx_ray& r) {
+    ray out;
+    out.origin = {r.ox, r.oy, r.oz}, out.direction = {r.dx, r.dy, r.dz};
+    out.tmin = r.tmin, out.tmax = r.tmax;
+    return out;
+}
+
 }  // namespace cpu_detail
 
 // The stream, once per SIMD lane set (see simd_stream.inc); declared only where
@@ -181,6 +192,24 @@ public:
         else trace_mode<VX_MODE_CLOSEST>(rays, hits);
     }
 
+    // Rays on the calling thread alone, in this engine's lanes (no pool): for callers that
+    // share the work out themselves (cpu/appearance_walk.hpp). The same hits as trace().
+    template <std::uint32_t Mode>
+    void trace_here(std::span<const ray> rays, std::span<hit> hits) const {
+        const std::uint32_t* blob = view_.data();
+        // cpu-scalar compiles only the scalar stream: the SIMD ones exist in voxray::cpu alone.
+        if constexpr (Simd) {
+#if !VOXRAY_CPU_SIMD_LANES
+            static_assert(kernels::linked_streams<Kernel>,
+                          "voxray::kernels holds the SIMD streams of the structures registered with "
+                          "voxray_add_structure only: register this one, or leave voxray::kernels unlinked");
+#endif
+            if (width_ == 16) return kernels::simd16::trace_stream<Kernel, Mode>(blob, rays.data(), hits.data(), rays.size());
+            if (width_ == 8) return kernels::simd8::trace_stream<Kernel, Mode>(blob, rays.data(), hits.data(), rays.size());
+        }
+        kernels::scalar::trace_stream<Kernel, Mode>(blob, rays.data(), hits.data(), rays.size());
+    }
+
     // One ray with the scalar kernel on the calling thread: no pool, no lane set-up
     // (tracer::closest_hit(const ray&)). Same hit as trace(), bit for bit.
     hit trace_one(const ray& r, std::uint32_t mode) const {
@@ -207,29 +236,15 @@ private:
 
     template <std::uint32_t Mode>
     void trace_mode(std::span<const ray> rays, std::span<hit> hits) {
-        const std::uint32_t* blob = view_.data();
         std::size_t batches = (rays.size() + batch_rays - 1) / batch_rays;
         auto batch = [&](std::size_t b) {
-            std::size_t begin = b * batch_rays, end = std::min(rays.size(), begin + batch_rays);
-            // cpu-scalar compiles only the scalar stream: the SIMD ones exist in voxray::cpu alone.
-            if constexpr (Simd) {
-#if !VOXRAY_CPU_SIMD_LANES
-                static_assert(kernels::linked_streams<Kernel>,
-                              "voxray::kernels holds the SIMD streams of the structures registered with "
-                              "voxray_add_structure only: register this one, or leave voxray::kernels unlinked");
-#endif
-                if (width_ == 16)
-                    return kernels::simd16::trace_stream<Kernel, Mode>(blob, &rays[begin], &hits[begin], end - begin);
-                if (width_ == 8)
-                    return kernels::simd8::trace_stream<Kernel, Mode>(blob, &rays[begin], &hits[begin], end - begin);
-            }
-            kernels::scalar::trace_stream<Kernel, Mode>(blob, &rays[begin], &hits[begin], end - begin);
+            std::size_t begin = b * batch_rays, count = std::min(rays.size(), begin + batch_rays) - begin;
+            trace_here<Mode>(rays.subspan(begin, count), hits.subspan(begin, count));
         };
         // A single batch runs on the calling thread: waking the pool would cost more than it saves.
         if (batches == 1) batch(0);
         else pool_->parallel_for(batches, batch);
     }
-
 
     std::shared_ptr<thread_pool> pool_;
     unsigned width_ = 1;  // 1: the scalar kernel

@@ -1,0 +1,102 @@
+/* One voxel of the compositing walk (walk.inc), written once for every structure and every
+ * way of driving the walk: a cursor holds a walk under way, and vx_app_walk_visit takes the
+ * closest hit of the cursor's ray, blends that voxel's record into the cursor's state and
+ * moves the ray on past it. The walk is
+ *
+ *     c = vx_app_walk_begin(r, s, max_visits);
+ *     while (c.going != 0u) c = vx_app_walk_visit(..., closest_hit(c.r), c);
+ *
+ * which walk.inc writes as one loop per ray (GPUs, the CPU's scalar lanes) and the CPU's
+ * SIMD walk (cpu/appearance_walk.hpp) runs as rounds: the closest hits of every live
+ * cursor's ray on SIMD lanes, then a visit each. Both give the same state bit for bit.
+ * Users' shaders can drive it with their own trace too. Needs walk_types.h. Included once
+ * per lane set; no include guard.
+ *
+ * Unlike the records' functions, these two are not `precise` in GLSL: glslang's precise
+ * propagation through a cursor (a struct in a struct, assigned field by field) grows without
+ * bound (over 20 GB for one module). Their own sums and products go through
+ * vx_app_add_product, which is, so no compiler fuses them and every backend rounds alike. */
+
+/* sum + x y z, rounded as written on every backend (no fused multiply-add). */
+VX_APP_FN float vx_app_add_product(float sum, float x, float y, float z) { return sum + x * y * z; }
+
+VX_STRUCT(vx_app_walk_cursor)
+    vx_app_walk_state s;
+    vx_ray r;     /* the ray; its tmin moves past each voxel walked */
+    float nudge;  /* how far on a re-entry that landed in the voxel just left steps next */
+    uint tries;   /* closest hits taken */
+    uint going;   /* 1 while the walk wants the closest hit along r */
+VX_END_STRUCT(vx_app_walk_cursor)
+
+/* A walk of at most `max_visits` voxels and 4 max_visits closest hits along r, going on from s. */
+VX_FN vx_app_walk_cursor vx_app_walk_begin(vx_ray r, vx_app_walk_state s, uint max_visits) {
+    vx_app_walk_cursor c;
+    c.s = s, c.r = r, c.nudge = 1.0e-6f, c.tries = 0u;
+    c.going = s.w.visits < max_visits ? 1u : 0u;
+    return c;
+}
+
+/* The walk after the closest hit `h` of c.r: the voxel blended, C += T a c, T *= 1 - a,
+ * and the ray moved past it; it stops (going 0) when the ray left the structure, T fell
+ * below `cutoff`, a voxel has no record, or the visits or closest hits ran out.
+ * Precomputed shadows (appearance/shadows.hpp): where `shadows_at` is not 0, `records`
+ * holds a visibility byte a row from that word on (four a word, row 0 in the low byte), and
+ * each voxel is lit by the light scaled by its visibility. */
+VX_FN vx_app_walk_cursor vx_app_walk_visit(VX_BLOB index, VX_BLOB records, VX_BLOB faces, uint kind,
+                                               vx_app_light light, float cutoff, uint max_visits, uint shadows_at,
+                                               vx_hit h, vx_app_walk_cursor c) {
+    c.s.w.steps = c.s.w.steps + h.steps;
+    c.tries = c.tries + 1u;
+    c.going = 0u;
+    if (h.status != VX_STATUS_HIT) return c;
+    float exit_t = vx_app_voxel_exit(c.r, h.x, h.y, h.z);
+    bool more_tries = c.tries < 4u * max_visits;
+    if (c.s.w.visits > 0u && h.x == c.s.px && h.y == c.s.py && h.z == c.s.pz) {
+        /* The re-entry landed in the voxel just left: at its far face the entry point's
+         * rounding can keep a slow axis on this side. Step on, further each time. */
+        c.r.tmin = vx_app_add_product(vx_fmax(c.r.tmin, exit_t), vx_fmax(exit_t, 1.0f), c.nudge, 1.0f);
+        c.nudge = c.nudge * 4.0f;
+        c.going = more_tries ? 1u : 0u;
+        return c;
+    }
+    c.nudge = 1.0e-6f;
+    uint row = vx_app_row(index, h.x, h.y, h.z);
+    if (row == VX_APP_NO_ROW) {
+        c.s.w.status = VX_APP_WALK_NO_RECORD;
+        c.s.w.x = h.x, c.s.w.y = h.y, c.s.w.z = h.z;
+        return c;
+    }
+    if (c.s.w.visits == 0u) {
+        c.s.w.t = h.t, c.s.w.x = h.x, c.s.w.y = h.y, c.s.w.z = h.z, c.s.w.face = h.face, c.s.w.material = h.material;
+        c.s.w.status = VX_STATUS_HIT;
+    }
+    vx_app_light lit = light;
+    if (shadows_at != 0u) {
+        uint code = (vx_load(records, shadows_at + (row >> 2u)) >> ((row & 3u) * 8u)) & 255u;
+        float visibility = vx_u2f(code) * (1.0f / 255.0f);
+        lit.lx = light.lx * visibility, lit.ly = light.ly * visibility, lit.lz = light.lz * visibility;
+    }
+    vx_app_sample seen = vx_app_record_sample(records, faces, kind, row, c.r.dx, c.r.dy, c.r.dz, lit);
+    /* A run of touching voxels is one surface crossing: their coverages add up (a line
+     * crosses a sheet once); separate runs blend as independent layers. Faithful records
+     * keep the paper's rule: every voxel is a layer of its own. */
+    int gx = h.x - c.s.px, gy = h.y - c.s.py, gz = h.z - c.s.pz;
+    bool apart = gx < -1 || gx > 1 || gy < -1 || gy > 1 || gz < -1 || gz > 1;
+    if (c.s.w.visits == 0u || apart || kind == VX_APP_KIND_FAITHFUL)
+        c.s.run_t = c.s.w.transmittance, c.s.run_covered = 0.0f;
+    float a = vx_fmin(seen.a, 1.0f - c.s.run_covered);
+    c.s.w.r = vx_app_add_product(c.s.w.r, c.s.run_t, a, seen.r);
+    c.s.w.g = vx_app_add_product(c.s.w.g, c.s.run_t, a, seen.g);
+    c.s.w.b = vx_app_add_product(c.s.w.b, c.s.run_t, a, seen.b);
+    c.s.w.nx = vx_app_add_product(c.s.w.nx, c.s.run_t, a, seen.nx);
+    c.s.w.ny = vx_app_add_product(c.s.w.ny, c.s.run_t, a, seen.ny);
+    c.s.w.nz = vx_app_add_product(c.s.w.nz, c.s.run_t, a, seen.nz);
+    c.s.run_covered = c.s.run_covered + a;
+    c.s.w.transmittance = c.s.run_t * (1.0f - c.s.run_covered);
+    c.s.w.visits = c.s.w.visits + 1u;
+    c.s.px = h.x, c.s.py = h.y, c.s.pz = h.z;
+    if (c.s.w.transmittance < cutoff) return c;
+    c.r.tmin = exit_t;
+    c.going = c.s.w.visits < max_visits && more_tries ? 1u : 0u;
+    return c;
+}
