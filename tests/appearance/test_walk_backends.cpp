@@ -1,8 +1,8 @@
 // The compositing walk on every backend (issue 25's determinism target): the CPU's scalar
 // lanes, its SIMD lanes (8 and 16 wide where the CPU has them), OpenCL and Vulkan give the
-// same pixels bit for bit, for every registered
-// structure and every record kind, on tables precomputed from a coloured mesh; opaque
-// records stop at the first-hit kernel's voxel on every backend.
+// same pixels bit for bit, for every registered structure and every record kind, on tables
+// precomputed from a coloured mesh; opaque records stop at the first-hit kernel's voxel on
+// every backend.
 #include <gtest/gtest.h>
 
 #include <cstdio>

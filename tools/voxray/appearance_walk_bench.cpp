@@ -53,8 +53,8 @@ struct walk_timing {
 };
 
 template <class Kernel, class Backend>
-walk_timing time_walk(const walk_structure& s, const appearance::appearance_table& table,
-                      const std::vector<ray>& rays, const appearance_light& light, const appearance_walk_bench_options& o) {
+walk_timing time_walk(const walk_structure& s, const appearance::appearance_table& table, const std::vector<ray>& rays,
+                      const appearance_light& light, const appearance_walk_bench_options& o) {
     appearance_walker<Kernel, Backend> walker(s.blob, table, o.threads);
     walk_timing t;
     t.simd_width = walker.simd_width();

@@ -23,6 +23,7 @@
 #include "ssim.hpp"
 #include "world_meta.hpp"
 #include "world_raster.hpp"
+#include "voxray/gltf/coloured_mesh.hpp"
 #include "voxray/io/mesh_loader.hpp"
 #include "voxray/rays.hpp"
 #include "voxray/world/frame/frame.hpp"
@@ -32,6 +33,10 @@
 #include "voxray/world/build/sharded_build.hpp"
 #include "voxray/world/build/world_build.hpp"
 #include "world_mpi.hpp"
+#if VOXRAY_WITH_EMBREE
+#include "voxray/appearance/world/chunk_tables.hpp"
+#include "voxray/embree/triangle_scene.hpp"
+#endif
 
 namespace voxray::tool {
 
@@ -50,6 +55,7 @@ struct build_options {
     std::string out, json_out, chunk_times;
     int chunk_bits = 8, density = 2;
     bool colours = false, force = false;
+    std::string appearance;  // a mesh world's appearance tables: this set's name (empty: none)
     float colour_error = 0.05f;
     std::vector<int> tile{1, 1, 1};
     unsigned threads = 0;
@@ -87,6 +93,26 @@ std::function<void(const world_build_progress&)> progress_printer() {
     };
 }
 
+// --appearance: the finished world's chunk tables at every LOD, LOD 0 from the triangles and
+// each coarser LOD re-sampled from the one below (appearance/world/chunk_tables.hpp).
+void build_appearance_tables(const io::triangle_mesh& mesh, const build_options& o) {
+#if VOXRAY_WITH_EMBREE
+    embree::triangle_scene scene(mesh, io::make_grid_map(mesh.bounds(), o.scene.resolution));
+    appearance::chunk_tables_options tables;
+    tables.set = o.appearance, tables.threads = o.threads;
+    std::fprintf(stderr, "appearance tables (%s) of every chunk at every LOD ...\n", o.appearance.c_str());
+    appearance::chunk_tables_report r = appearance::build_chunk_tables(scene, mesh, o.scene.resolution, o.out, tables);
+    std::uint64_t voxels = 0;
+    for (const auto& lod : r.lods) voxels += lod.voxels;
+    std::printf("appearance tables %s: %zu LODs, %llu voxels in %.1f s, in %s\n", o.appearance.c_str(), r.lods.size(),
+                (unsigned long long)voxels, r.seconds,
+                (std::filesystem::path(o.out) / "appearance" / o.appearance).string().c_str());
+#else
+    (void)mesh;
+    fail("world-build --appearance needs Embree (LOD 0's tables are sampled from the triangles): this build has none");
+#endif
+}
+
 int world_build(const build_options& o) {
     const std::string& spec = o.scene.scenes[0];
     // Checked before anything loads: the folder, and the report's file.
@@ -101,7 +127,7 @@ int world_build(const build_options& o) {
     wo.replace = o.force;
     wo.progress = progress_printer();
     std::string ext = std::filesystem::path(spec).extension().string();
-    bool mesh = ext == ".obj" || ext == ".ply";
+    bool mesh = gltf::is_coloured_mesh_path(spec);  // .obj, .ply, .gltf, .glb: coloured where the file is
     world_build_report report;
     palette pal;
     int up_axis = 2;
@@ -118,8 +144,13 @@ int world_build(const build_options& o) {
     std::optional<world_shard> shard;
     if (!o.shard.empty()) shard = parse_shard(o.shard);
     if (shard && o.finish) fail("--shard and --finish: run the shards first, then --finish alone");
+    if (!o.appearance.empty() && (!mesh || shard || o.finish))
+        fail("--appearance: tables are made from a mesh (.obj, .ply, .gltf, .glb) in a build of one process, not from ",
+             mesh ? "--shard or --finish" : spec);
     auto ranks = mpi_ranks::if_launched();
     if (ranks && (shard || o.finish)) fail("--shard and --finish are for separate jobs, not for ranks mpirun starts");
+    if (ranks && !o.appearance.empty())
+        fail("--appearance: tables are made in a build of one process, not by MPI ranks");
     bool quiet = ranks && ranks->rank() != 0;  // rank 0 speaks for all
     if (quiet) wo.progress = nullptr;
     std::optional<output_file> times;  // --chunk-times: a line a chunk job (each rank its own file)
@@ -141,12 +172,13 @@ int world_build(const build_options& o) {
     auto start = std::chrono::steady_clock::now();
     try {
         if (mesh) {
-            io::triangle_mesh m = io::load_mesh(spec);
+            io::triangle_mesh m = gltf::load_coloured_mesh(spec);
             if (!quiet) std::fprintf(stderr, "building a world from %s at %d, chunk by chunk ...\n", spec.c_str(), o.scene.resolution);
             mesh_source source(m, o.scene.resolution, o.scene.max_cell_tests);
             pal = source.colours();
             up_axis = 1;
             report = build(source);
+            if (!o.appearance.empty()) build_appearance_tables(m, o);
         } else {
             voxel_model model = load_scene(spec, o.scene);
             pal = model.palette();
@@ -423,6 +455,9 @@ command add_world_build(CLI::App& parent) {
     app->add_option("--chunk-bits", o->chunk_bits, "chunks of 2^N voxels a side")->check(CLI::Range(4, 10))->capture_default_str();
     app->add_option("--density", o->density, "children (of 8) a coarse voxel needs")->check(CLI::Range(1, 8))->capture_default_str();
     app->add_flag("--colours", o->colours, "colour-block attributes (LODs average colours) instead of exact palette indices");
+    app->add_option("--appearance", o->appearance,
+                    "a mesh world: also its appearance tables (compact records) of every chunk at every LOD, in "
+                    "OUT/appearance/NAME");
     app->add_option("--colour-error", o->colour_error, "largest colour error in a block")->check(finite_range(0.0, 1.0))->capture_default_str();
     app->add_option("--tile", o->tile, "a .vox or built-in scene repeated X Y Z times")->expected(3)->check(CLI::Range(1, 4096));
     app->add_option("--threads", o->threads, "build threads (0: all)")->capture_default_str();

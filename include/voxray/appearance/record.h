@@ -126,8 +126,10 @@ VX_APP_FN vx_app_sample vx_app_compact_faces(VX_BLOB faces, uint first, uint cou
         u.x = b, u.y = sign + n.y * n.y * a, u.z = -n.y;
         /* the frame against the ray and the light, turned by `side`; the ring's part scaled by spread */
         float nd = side * vx_app_dot(n, dx, dy, dz), nl = side * vx_app_dot(n, light.lx, light.ly, light.lz);
-        float td = side * spread * vx_app_dot(t, dx, dy, dz), tl = side * spread * vx_app_dot(t, light.lx, light.ly, light.lz);
-        float ud = side * spread * vx_app_dot(u, dx, dy, dz), ul = side * spread * vx_app_dot(u, light.lx, light.ly, light.lz);
+        float td = side * spread * vx_app_dot(t, dx, dy, dz);
+        float tl = side * spread * vx_app_dot(t, light.lx, light.ly, light.lz);
+        float ud = side * spread * vx_app_dot(u, dx, dy, dz);
+        float ul = side * spread * vx_app_dot(u, light.lx, light.ly, light.lz);
         float ring = 1.0f / vx_sqrt(1.0f + spread * spread);
         float area = 0.0f, lit = 0.0f, weight = vx_u2f(VX_APP_FACE_WEIGHT(f0));
         for (uint q = 0u; q < 4u; ++q) {

@@ -204,8 +204,10 @@ public:
                           "voxray::kernels holds the SIMD streams of the structures registered with "
                           "voxray_add_structure only: register this one, or leave voxray::kernels unlinked");
 #endif
-            if (width_ == 16) return kernels::simd16::trace_stream<Kernel, Mode>(blob, rays.data(), hits.data(), rays.size());
-            if (width_ == 8) return kernels::simd8::trace_stream<Kernel, Mode>(blob, rays.data(), hits.data(), rays.size());
+            if (width_ == 16)
+                return kernels::simd16::trace_stream<Kernel, Mode>(blob, rays.data(), hits.data(), rays.size());
+            if (width_ == 8)
+                return kernels::simd8::trace_stream<Kernel, Mode>(blob, rays.data(), hits.data(), rays.size());
         }
         kernels::scalar::trace_stream<Kernel, Mode>(blob, rays.data(), hits.data(), rays.size());
     }

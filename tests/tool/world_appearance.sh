@@ -1,0 +1,28 @@
+#!/usr/bin/env bash
+# world-build --appearance: a coloured glTF mesh's world and its appearance tables in one
+# step, one table file for every chunk at every LOD (the build's own table of chunks counts
+# them); --appearance from a scene without triangles, or with --shard, is refused.
+#   world_appearance.sh TOOL DATA_DIR WORK_DIR
+set -euo pipefail
+tool=$1 data=$2 work=$3
+source "$(dirname "$0")/expect.sh"
+rm -rf "$work" && mkdir -p "$work"
+build=(world-build "$data/mesh/small_tree/scene.gltf" --resolution 48 --chunk-bits 4)
+
+"$tool" "${build[@]}" --appearance ours --out "$work/world" > "$work/build.txt" 2>&1 || { cat "$work/build.txt"; exit 1; }
+# The build's table: "  LOD  chunks  voxels ..." rows; the tables: appearance/ours/lodN/X_Y_Z.vxap.
+lods=0
+while read -r lod chunks _; do
+    tables=$(find "$work/world/appearance/ours/lod$lod" -name '*.vxap' 2>/dev/null | wc -l || true)
+    if [[ $tables -eq $chunks ]]; then echo "ok   LOD $lod: $tables tables for $chunks chunks"
+    else echo "FAIL LOD $lod: $tables tables for $chunks chunks"; failures=$((failures + 1)); fi
+    lods=$((lods + 1))
+done < <(grep -E '^ +[0-9]+ +[0-9]+ +[0-9]+ ' "$work/build.txt")
+[[ $lods -ge 2 ]] && echo "ok   $lods LODs" || { echo "FAIL: $lods LODs in the build's table"; failures=$((failures + 1)); }
+grep -E "appearance tables ours: $lods LODs" "$work/build.txt" || { echo "FAIL: no tables line"; failures=$((failures + 1)); }
+
+expect_failure "--appearance without triangles" "--appearance: tables are made from a mesh" \
+    "$tool" world-build builtin:menger:27 --chunk-bits 4 --appearance ours --out "$work/menger"
+expect_failure "--appearance with --shard" "--appearance: .* not from --shard" \
+    "$tool" "${build[@]}" --appearance ours --shard 0/2 --out "$work/shard"
+finish
