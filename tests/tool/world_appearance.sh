@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # world-build --appearance: a coloured glTF mesh's world and its appearance tables in one
 # step, one table file for every chunk at every LOD (the build's own table of chunks counts
-# them); --appearance from a scene without triangles, or with --shard, is refused.
+# them); --appearance from a scene without triangles, with --shard, or naming no one folder is
+# refused, before the world is built.
 #   world_appearance.sh TOOL DATA_DIR WORK_DIR
 set -euo pipefail
 tool=$1 data=$2 work=$3
@@ -25,4 +26,8 @@ expect_failure "--appearance without triangles" "--appearance: tables are made f
     "$tool" world-build builtin:menger:27 --chunk-bits 4 --appearance ours --out "$work/menger"
 expect_failure "--appearance with --shard" "--appearance: .* not from --shard" \
     "$tool" "${build[@]}" --appearance ours --shard 0/2 --out "$work/shard"
+expect_failure "--appearance naming no one folder" "the set's name \"a/b\" must be one folder name" \
+    "$tool" "${build[@]}" --appearance a/b --out "$work/slash"
+[[ ! -e "$work/slash/world.vxwm" ]] && echo "ok   refused before the world was built" \
+    || { echo "FAIL: a world was built before the set's name was refused"; failures=$((failures + 1)); }
 finish

@@ -93,6 +93,19 @@ std::function<void(const world_build_progress&)> progress_printer() {
     };
 }
 
+// --appearance is refused before the world is built, not after: without triangles (`allowed`
+// false, `instead` says what was given), without Embree, or with a set name that is not one folder.
+void check_appearance_request(const build_options& o, bool allowed, const std::string& instead) {
+    if (!allowed)
+        fail("--appearance: tables are made from a mesh (.obj, .ply, .gltf, .glb) in a build of one process, not from ",
+             instead);
+#if VOXRAY_WITH_EMBREE
+    appearance::check_set_name(o.appearance);
+#else
+    fail("world-build --appearance needs Embree (LOD 0's tables are sampled from the triangles): this build has none");
+#endif
+}
+
 // --appearance: the finished world's chunk tables at every LOD, LOD 0 from the triangles and
 // each coarser LOD re-sampled from the one below (appearance/world/chunk_tables.hpp).
 void build_appearance_tables(const io::triangle_mesh& mesh, const build_options& o) {
@@ -108,8 +121,7 @@ void build_appearance_tables(const io::triangle_mesh& mesh, const build_options&
                 (unsigned long long)voxels, r.seconds,
                 (std::filesystem::path(o.out) / "appearance" / o.appearance).string().c_str());
 #else
-    (void)mesh;
-    fail("world-build --appearance needs Embree (LOD 0's tables are sampled from the triangles): this build has none");
+    (void)mesh, (void)o;  // refused before the build (check_appearance_request)
 #endif
 }
 
@@ -126,7 +138,6 @@ int world_build(const build_options& o) {
     wo.colour_error = o.colour_error;
     wo.replace = o.force;
     wo.progress = progress_printer();
-    std::string ext = std::filesystem::path(spec).extension().string();
     bool mesh = gltf::is_coloured_mesh_path(spec);  // .obj, .ply, .gltf, .glb: coloured where the file is
     world_build_report report;
     palette pal;
@@ -144,9 +155,8 @@ int world_build(const build_options& o) {
     std::optional<world_shard> shard;
     if (!o.shard.empty()) shard = parse_shard(o.shard);
     if (shard && o.finish) fail("--shard and --finish: run the shards first, then --finish alone");
-    if (!o.appearance.empty() && (!mesh || shard || o.finish))
-        fail("--appearance: tables are made from a mesh (.obj, .ply, .gltf, .glb) in a build of one process, not from ",
-             mesh ? "--shard or --finish" : spec);
+    if (!o.appearance.empty())
+        check_appearance_request(o, mesh && !shard && !o.finish, mesh ? "--shard or --finish" : spec);
     auto ranks = mpi_ranks::if_launched();
     if (ranks && (shard || o.finish)) fail("--shard and --finish are for separate jobs, not for ranks mpirun starts");
     if (ranks && !o.appearance.empty())

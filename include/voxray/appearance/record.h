@@ -94,9 +94,14 @@ VX_APP_FN float vx_app_opacity(uint h1, uint h2, float dx, float dy, float dz) {
     return vx_fmin(vx_fmax(q * (1.0f / vx_u2f(VX_APP_OPACITY_LEVELS)), 0.0f), 1.0f);
 }
 
+/* Lambert with ambient for a normal whose dot product with the light is n_dot_l. */
+VX_APP_FN float vx_app_lambert(float n_dot_l, vx_app_light light) {
+    return light.ambient + (1.0f - light.ambient) * vx_fmax(n_dot_l, 0.0f);
+}
+
 /* Lambert with ambient for normal n. */
 VX_APP_FN float vx_app_shade(vx_app_vec n, vx_app_light light) {
-    return light.ambient + (1.0f - light.ambient) * vx_fmax(vx_app_dot(n, light.lx, light.ly, light.lz), 0.0f);
+    return vx_app_lambert(vx_app_dot(n, light.lx, light.ly, light.lz), light);
 }
 
 /* The faces of a compact record along unit ray direction (dx, dy, dz): each face's colour,
@@ -139,7 +144,7 @@ VX_APP_FN vx_app_sample vx_app_compact_faces(VX_BLOB faces, uint first, uint cou
             float md = (nd + c * td + s * ud) * scale, ml = (nl + c * tl + s * ul) * scale;
             float facing = vx_fmax(-md, 0.0f) * 0.25f;
             area = area + facing;
-            lit = lit + facing * (light.ambient + (1.0f - light.ambient) * vx_fmax(ml, 0.0f));
+            lit = lit + facing * vx_app_lambert(ml, light);
         }
         /* the face's own mean normal, by the area it shows (the nodes' would lean to the viewer) */
         sum.nx = sum.nx + weight * area * side * n.x;

@@ -43,8 +43,8 @@ VX_FN vx_app_walk_cursor vx_app_walk_begin(vx_ray r, vx_app_walk_state s, uint m
  * holds a visibility byte a row from that word on (four a word, row 0 in the low byte), and
  * each voxel is lit by the light scaled by its visibility. */
 VX_FN vx_app_walk_cursor vx_app_walk_visit(VX_BLOB index, VX_BLOB records, VX_BLOB faces, uint kind,
-                                               vx_app_light light, float cutoff, uint max_visits, uint shadows_at,
-                                               vx_hit h, vx_app_walk_cursor c) {
+                                           vx_app_light light, float cutoff, uint max_visits, uint shadows_at,
+                                           vx_hit h, vx_app_walk_cursor c) {
     c.s.w.steps = c.s.w.steps + h.steps;
     c.tries = c.tries + 1u;
     c.going = 0u;

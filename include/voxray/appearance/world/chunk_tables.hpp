@@ -57,6 +57,13 @@ struct chunk_tables_report {
     double seconds = 0;
 };
 
+// A set's name is one folder of dir/appearance: an error otherwise (checked by
+// build_chunk_tables, and by callers that want to know before a long world build).
+inline void check_set_name(const std::string& set) {
+    if (set.empty() || set.find_first_of("/\\") != std::string::npos || set == "." || set == "..")
+        fail("appearance chunk tables: the set's name \"", set, "\" must be one folder name");
+}
+
 inline std::filesystem::path chunk_table_path(const std::filesystem::path& dir, const std::string& set,
                                               const chunk_key& k) {
     return dir / "appearance" / set / ("lod" + std::to_string(k.lod)) /
@@ -131,8 +138,7 @@ template <class Scene>
 chunk_tables_report build_chunk_tables(const Scene& scene, const io::triangle_mesh& mesh, int resolution,
                                        const std::filesystem::path& dir, const chunk_tables_options& o) {
     using namespace chunk_tables_detail;
-    if (o.set.empty() || o.set.find_first_of("/\\") != std::string::npos || o.set == "." || o.set == "..")
-        fail("appearance chunk tables: the set's name \"", o.set, "\" must be one folder name");
+    check_set_name(o.set);
     auto start = std::chrono::steady_clock::now();
     mesh.validate();
     const world_manifest m = read_manifest(dir);
