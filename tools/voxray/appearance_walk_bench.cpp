@@ -105,10 +105,33 @@ int appearance_walk_bench(const appearance_walk_bench_options& o) {
     const std::string scene_name = mesh_path.parent_path().filename().string() + "/" + mesh_path.filename().string();
     std::fprintf(stderr, "%s at %d: %llu voxels\n", scene_name.c_str(), o.resolution,
                  (unsigned long long)model.voxel_count());
+    // The tables, timed: through each voxel's own triangles (the precompute's way), and ours
+    // again with every ray descending Embree's BVH from the root, the peer of that way.
     std::vector<std::pair<std::string, appearance::appearance_table>> tables;
+    std::printf("%-24s %4s %-9s %-16s %9s %10s %12s %10s\n", "scene", "res", "method", "rays meet", "seconds",
+                "us/voxel", "us/vox/thread", "Mrays/s");
+    auto time_precompute = [&](const char* method, appearance::record_kind kind, bool voxel_lists) {
+        appearance::precompute_stats stats;
+        appearance::appearance_table table = appearance::precompute(
+            scene, mesh, model, {.kind = kind, .threads = o.threads, .voxel_lists = voxel_lists}, &stats);
+        const char* path = voxel_lists ? "voxel_lists" : "embree_bvh";
+        std::printf("%-24s %4d %-9s %-16s %9.2f %10.2f %12.2f %10.2f\n", scene_name.c_str(), o.resolution, method, path,
+                    stats.seconds, stats.us_per_voxel(), stats.us_per_voxel() * o.threads,
+                    stats.rays_per_second() * 1e-6);
+        if (out)
+            out->stream() << nlohmann::json{{"row", "precompute"}, {"scene", scene_name}, {"resolution", o.resolution},
+                                            {"voxels", stats.voxels}, {"method", method}, {"rays_meet", path},
+                                            {"threads", o.threads}, {"seconds", stats.seconds},
+                                            {"us_per_voxel", stats.us_per_voxel()}, {"rays", stats.rays},
+                                            {"rays_per_second", stats.rays_per_second()}}
+                                 .dump()
+                          << "\n";
+        return table;
+    };
     for (auto [name, kind] : {std::pair{"averages", appearance::record_kind::averages},
                               {"ours", appearance::record_kind::compact}})
-        tables.emplace_back(name, appearance::precompute(scene, mesh, model, {.kind = kind, .threads = o.threads}));
+        tables.emplace_back(name, time_precompute(name, kind, true));
+    time_precompute("ours", appearance::record_kind::compact, false);
     camera cam = auto_camera(model.bounds(), model.up_axis, o.view);
     const std::vector<ray> rays = four_rays_a_pixel(cam, size, size);
     const appearance_light light{.to_light = light_direction(cam, true), .ambient = 0.2f};
@@ -134,7 +157,8 @@ int appearance_walk_bench(const appearance_walk_bench_options& o) {
                             method.c_str(), fps, ns, cycles, t.steps, t.visits, first_mrays, first_steps);
                 std::fflush(stdout);
                 if (out)
-                    out->stream() << nlohmann::json{{"scene", scene_name}, {"resolution", o.resolution},
+                    out->stream() << nlohmann::json{{"row", "walk"}, {"scene", scene_name},
+                                                    {"resolution", o.resolution},
                                                     {"size", size}, {"rays_per_pixel", 4}, {"view", o.view},
                                                     {"voxels", model.voxel_count()}, {"structure", structure_name},
                                                     {"backend", backend}, {"simd_width", t.simd_width},

@@ -64,8 +64,9 @@ struct faithful_samples {
 template <class Surfaces>
 faithful_samples sample_faithful(const Surfaces& surfaces, glm::ivec3 voxel, const sampling_options& o) {
     faithful_samples out;
+    const voxel_rays rays(voxel, o.rays, o.stratified, o.seed);
     for (std::uint32_t i = 0; i < o.rays; ++i) {
-        sampling_ray r = voxel_ray(voxel, i, o.rays, o.stratified, o.seed);
+        sampling_ray r = rays(i);
         segment_hit h = surfaces.first_surface(r.origin, r.direction, r.length);
         glm::dvec3 local = r.origin - glm::dvec3(voxel);
         // The code's rule: a ray counts in every element its line crosses, also past its hit.

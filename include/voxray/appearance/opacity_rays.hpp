@@ -32,6 +32,7 @@ template <class Surfaces>
 directional_opacities directional_opacity(const Surfaces& surfaces, glm::ivec3 voxel, unsigned strata,
                                           std::uint64_t seed) {
     directional_opacities alpha{};
+    const voxel_stream stream(seed, voxel);
     for (unsigned k = 0; k < VX_APP_DIRECTIONS; ++k) {
         glm::dvec3 d = opacity_direction(k);
         unsigned rays = 0;
@@ -43,8 +44,8 @@ directional_opacities directional_opacity(const Surfaces& surfaces, glm::ivec3 v
                 std::uint32_t id = opacity_ray_ids + (k * 3u + unsigned(axis)) * strata * strata + cell;
                 glm::dvec3 p(0.0);
                 p[axis] = d[axis] > 0 ? 0.0 : 1.0;
-                p[u] = (double(cell % strata) + uniform01(seed, voxel, id, 0)) / double(strata);
-                p[v] = (double(cell / strata) + uniform01(seed, voxel, id, 1)) / double(strata);
+                p[u] = (double(cell % strata) + stream.uniform01(id, 0)) / double(strata);
+                p[v] = (double(cell / strata) + stream.uniform01(id, 1)) / double(strata);
                 covered += surfaces.first_surface(glm::dvec3(voxel) + p, d, exit_length(p, d)).coverage;
             }
         }

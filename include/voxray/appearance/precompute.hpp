@@ -1,6 +1,7 @@
 // The appearance precompute (issue 25, item 3): every non-empty voxel of a model voxelized
 // from `mesh` sampled against the original triangles (appearance/voxel_sampler.hpp,
-// opacity_rays.hpp) on all threads, and a record made of what it saw. Voxels are handed out
+// opacity_rays.hpp) on all threads, and a record made of what it saw; each voxel's rays meet
+// only the triangles that reach it (voxel_triangles.hpp). Voxels are handed out
 // in table order and each one's rays depend only on (seed, voxel, ray), so the table is the
 // same for any thread count. `Scene` traces the mesh in voxel space
 // (embree/triangle_scene.hpp built on the grid map the voxelizer used); the model must be
@@ -30,6 +31,9 @@ struct precompute_options {
     unsigned opacity_strata = 2;  // compact: n x n parallel rays a face, per opacity direction
     unsigned threads = 0;         // 0: every hardware thread
     directional_light light{};    // six: the light its colours are lit by
+    // Each voxel's rays against its own few triangles (voxel_triangles.hpp); false: every ray
+    // descends the scene's BVH from the root (Embree; the peer the lists are timed against).
+    bool voxel_lists = true;
 };
 
 struct precompute_stats {
@@ -66,40 +70,34 @@ appearance_table build_table(const Surfaces& surfaces, std::vector<glm::ivec3> v
     constexpr std::size_t batch = 64;
     run_build_threads(threads, [&](unsigned) {
         voxel_samples samples;
+        voxel_triangles near;  // the voxel's own triangles, where the surfaces are triangles
         std::uint64_t mine = 0;
-        for (std::size_t first; (first = next.fetch_add(batch)) < t.voxels.size();)
-            for (std::size_t row = first; row < std::min(first + batch, t.voxels.size()); ++row) {
-                auto* words = t.words.data() + row * std::size_t(t.record_words);
-                if (o.kind == record_kind::faithful) {  // the paper's own sampling of the subgrid
-                    faithful_samples paper = sample_faithful(surfaces, t.voxels[row], o.sampling);
-                    mine += paper.hits;
-                    auto record = make_faithful_record(paper);
-                    std::copy(record.begin(), record.end(), words);
-                    continue;
-                }
-                sample_voxel(surfaces, t.voxels[row], o.sampling, samples);
-                mine += samples.hits;
-                if (o.kind == record_kind::averages) {
-                    auto record = averages_record(samples);
-                    std::copy(record.begin(), record.end(), words);
-                    continue;
-                }
-                if (o.kind == record_kind::six) {
-                    auto record = six_directions_record(samples, o.light);
-                    std::copy(record.begin(), record.end(), words);
-                    continue;
-                }
-                if (o.kind == record_kind::sggx) {
-                    auto record = sggx_record(samples);
-                    std::copy(record.begin(), record.end(), words);
-                    continue;
-                }
-                directional_opacities alpha =
-                    directional_opacity(surfaces, t.voxels[row], o.opacity_strata, o.sampling.seed);
-                compact_record r = make_compact_record(voxel_faces(samples), alpha);
-                std::copy(r.head.begin(), r.head.end(), words);
-                row_faces[row] = std::move(r.faces);
+        auto fill_row = [&](const auto& voxel_surfaces, std::size_t row) {
+            auto* words = t.words.data() + row * std::size_t(t.record_words);
+            auto store = [&](const auto& record) { std::copy(record.begin(), record.end(), words); };
+            if (o.kind == record_kind::faithful) {  // the paper's own sampling of the subgrid
+                faithful_samples paper = sample_faithful(voxel_surfaces, t.voxels[row], o.sampling);
+                mine += paper.hits;
+                return store(make_faithful_record(paper));
             }
+            sample_voxel(voxel_surfaces, t.voxels[row], o.sampling, samples);
+            mine += samples.hits;
+            if (o.kind == record_kind::averages) return store(averages_record(samples));
+            if (o.kind == record_kind::six) return store(six_directions_record(samples, o.light));
+            if (o.kind == record_kind::sggx) return store(sggx_record(samples));
+            directional_opacities alpha =
+                directional_opacity(voxel_surfaces, t.voxels[row], o.opacity_strata, o.sampling.seed);
+            compact_record r = make_compact_record(voxel_faces(samples), alpha);
+            store(r.head);
+            row_faces[row] = std::move(r.faces);
+        };
+        for (std::size_t first; (first = next.fetch_add(batch)) < t.voxels.size();)
+            for (std::size_t row = first; row < std::min(first + batch, t.voxels.size()); ++row)
+                if (o.voxel_lists)
+                    with_voxel_surfaces(surfaces, t.voxels[row], near,
+                                        [&](const auto& voxel_surfaces) { fill_row(voxel_surfaces, row); });
+                else
+                    fill_row(surfaces, row);
         hits += mine;
     });
     for (std::size_t row = 0; row < row_faces.size(); ++row) {  // the face pool, in row order

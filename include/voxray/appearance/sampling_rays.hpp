@@ -13,8 +13,11 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <map>
 #include <numbers>
+#include <vector>
 
+#include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
 namespace voxray::appearance {
@@ -27,12 +30,25 @@ inline std::uint64_t mix64(std::uint64_t x) {
     return x ^ (x >> 31);
 }
 
-// A uniform double in [0, 1) from draw `k` of the stream keyed by (seed, voxel, ray).
+// The random stream of one voxel: a uniform double in [0, 1) for each (ray, draw) pair,
+// keyed by (seed, voxel). The voxel's key is mixed once, its draws then cost one mix each.
+class voxel_stream {
+public:
+    voxel_stream(std::uint64_t seed, glm::ivec3 voxel)
+        : key_(mix64(seed ^ mix64(std::uint64_t(std::uint32_t(voxel.x)) |
+                                  std::uint64_t(std::uint32_t(voxel.y)) << 32)) ^
+               std::uint64_t(std::uint32_t(voxel.z))) {}
+    double uniform01(std::uint32_t ray, std::uint32_t k) const {
+        return double(mix64(key_ ^ (std::uint64_t(ray) << 32 | k)) >> 11) * 0x1.0p-53;
+    }
+
+private:
+    std::uint64_t key_;
+};
+
+// Draw `k` of the stream keyed by (seed, voxel, ray), for one-off draws.
 inline double uniform01(std::uint64_t seed, glm::ivec3 voxel, std::uint32_t ray, std::uint32_t k) {
-    std::uint64_t key = mix64(seed ^ mix64(std::uint64_t(std::uint32_t(voxel.x)) |
-                                           std::uint64_t(std::uint32_t(voxel.y)) << 32));
-    key = mix64(key ^ std::uint64_t(std::uint32_t(voxel.z)) ^ (std::uint64_t(ray) << 32 | k));
-    return double(key >> 11) * 0x1.0p-53;
+    return voxel_stream(seed, voxel).uniform01(ray, k);
 }
 
 struct sampling_ray {
@@ -50,27 +66,56 @@ inline double exit_length(glm::dvec3 p, glm::dvec3 d) {
     return std::max(length, 0.0);
 }
 
-// Ray `i` of `count` through voxel `voxel` (the unit cube at its integer corner).
-inline sampling_ray voxel_ray(glm::ivec3 voxel, std::uint32_t i, std::uint32_t count, bool stratified,
-                              std::uint64_t seed) {
-    constexpr double pi = std::numbers::pi;
-    double z, phi;
-    if (stratified) {  // spherical Fibonacci, turned per voxel
-        z = 1.0 - (2.0 * double(i) + 1.0) / double(count);
-        phi = 2.0 * pi * (double(i) * 0.6180339887498949 + uniform01(seed, voxel, 0xFFFFFFFFu, 0));
-    } else {
-        z = 1.0 - 2.0 * uniform01(seed, voxel, i, 0);
-        phi = 2.0 * pi * uniform01(seed, voxel, i, 1);
+// The `count` sampling rays of one voxel (the unit cube at its integer corner).
+class voxel_rays {
+public:
+    voxel_rays(glm::ivec3 voxel, std::uint32_t count, bool stratified, std::uint64_t seed)
+        : voxel_(voxel), count_(count), stratified_(stratified), stream_(seed, voxel) {
+        if (!stratified) return;
+        // The Fibonacci set turned by one angle a voxel: cos and sin of each ray's own angle
+        // (the same for every voxel, made once a thread) turned by the voxel's.
+        const double turn = 2.0 * std::numbers::pi * stream_.uniform01(0xFFFFFFFFu, 0);
+        cos_turn_ = std::cos(turn), sin_turn_ = std::sin(turn);
+        thread_local std::map<std::uint32_t, std::vector<glm::dvec2>> angles_by_count;  // nodes stay put
+        std::vector<glm::dvec2>& angles = angles_by_count[count];
+        for (std::uint32_t i = std::uint32_t(angles.size()); i < count; ++i) {
+            double a = 2.0 * std::numbers::pi * (double(i) * 0.6180339887498949);
+            angles.push_back({std::cos(a), std::sin(a)});
+        }
+        angles_ = angles.data();
     }
-    double r = std::sqrt(std::max(0.0, 1.0 - z * z));
-    glm::dvec3 d(r * std::cos(phi), r * std::sin(phi), z);
-    // The entry face, by projected area, then a point on it.
-    double weights[3] = {std::fabs(d.x), std::fabs(d.y), std::fabs(d.z)};
-    double pick = uniform01(seed, voxel, i, 2) * (weights[0] + weights[1] + weights[2]);
-    int axis = pick < weights[0] ? 0 : (pick < weights[0] + weights[1] ? 1 : 2);
-    glm::dvec3 p(uniform01(seed, voxel, i, 3), uniform01(seed, voxel, i, 4), uniform01(seed, voxel, i, 5));
-    p[axis] = d[axis] > 0 ? 0.0 : 1.0;
-    return {glm::dvec3(voxel) + p, d, exit_length(p, d)};
-}
+
+    // Ray `i`: its direction, then its entry point.
+    sampling_ray operator()(std::uint32_t i) const {
+        double z, cos_phi, sin_phi;
+        if (stratified_) {  // spherical Fibonacci, turned
+            z = 1.0 - (2.0 * double(i) + 1.0) / double(count_);
+            glm::dvec2 a = angles_[i];
+            cos_phi = a.x * cos_turn_ - a.y * sin_turn_;
+            sin_phi = a.y * cos_turn_ + a.x * sin_turn_;
+        } else {
+            z = 1.0 - 2.0 * stream_.uniform01(i, 0);
+            double phi = 2.0 * std::numbers::pi * stream_.uniform01(i, 1);
+            cos_phi = std::cos(phi), sin_phi = std::sin(phi);
+        }
+        double r = std::sqrt(std::max(0.0, 1.0 - z * z));
+        glm::dvec3 d(r * cos_phi, r * sin_phi, z);
+        // The entry face, by projected area, then a point on it.
+        double weights[3] = {std::fabs(d.x), std::fabs(d.y), std::fabs(d.z)};
+        double pick = stream_.uniform01(i, 2) * (weights[0] + weights[1] + weights[2]);
+        int axis = pick < weights[0] ? 0 : (pick < weights[0] + weights[1] ? 1 : 2);
+        glm::dvec3 p(stream_.uniform01(i, 3), stream_.uniform01(i, 4), stream_.uniform01(i, 5));
+        p[axis] = d[axis] > 0 ? 0.0 : 1.0;
+        return {glm::dvec3(voxel_) + p, d, exit_length(p, d)};
+    }
+
+private:
+    glm::ivec3 voxel_;
+    std::uint32_t count_;
+    bool stratified_;
+    voxel_stream stream_;
+    double cos_turn_ = 1, sin_turn_ = 0;
+    const glm::dvec2* angles_ = nullptr;
+};
 
 }  // namespace voxray::appearance

@@ -16,6 +16,7 @@
 #include <glm/vec4.hpp>
 
 #include "voxray/appearance/sampling_rays.hpp"
+#include "voxray/appearance/voxel_triangles.hpp"
 #include "voxray/io/mesh.hpp"
 
 namespace voxray::appearance {
@@ -88,6 +89,16 @@ segment_hit first_surface(const Scene& scene, const io::triangle_mesh& mesh, glm
     return {};
 }
 
+// The original triangles as one voxel's rays meet them: its short list (voxel_triangles.hpp).
+struct voxel_triangle_surfaces {
+    const voxel_triangles& near;
+    const io::triangle_mesh& mesh;
+
+    segment_hit first_surface(glm::dvec3 origin, glm::dvec3 direction, double length) const {
+        return appearance::first_surface(near, mesh, origin, direction, length);
+    }
+};
+
 // What the sampling rays of a table meet: the original triangles. (A coarser level's rays
 // meet the finer level's filtered voxels instead: appearance/resample.hpp.) Any type with
 // this first_surface does; the voxel space is the table's.
@@ -99,18 +110,43 @@ struct triangle_surfaces {
     segment_hit first_surface(glm::dvec3 origin, glm::dvec3 direction, double length) const {
         return appearance::first_surface(scene, mesh, origin, direction, length);
     }
+
+    // Calls use(surfaces) with these surfaces as the rays of `voxel` meet them: its own
+    // triangles through `scratch` where the scene can list them and they are few, else
+    // the whole scene. The hits are the same either way.
+    template <class Use>
+    void for_voxel(glm::ivec3 voxel, voxel_triangles& scratch, Use&& use) const {
+        if constexpr (requires(std::vector<std::uint32_t>& out) {
+                          scene.triangles_near(glm::vec3(0.0f), 1.0f, out);
+                          scene.corners(0u);
+                      }) {
+            if (scratch.gather(scene, voxel)) return use(voxel_triangle_surfaces{scratch, mesh});
+        }
+        use(*this);
+    }
 };
 // Spelled out for compilers without deduction for aggregates (clang before 17).
 template <class Scene>
 triangle_surfaces(const Scene&, const io::triangle_mesh&) -> triangle_surfaces<Scene>;
+
+// use(surfaces narrowed to `voxel`) where `surfaces` can narrow (triangle_surfaces::for_voxel),
+// else use(surfaces).
+template <class Surfaces, class Use>
+void with_voxel_surfaces(const Surfaces& surfaces, glm::ivec3 voxel, voxel_triangles& scratch, Use&& use) {
+    if constexpr (requires { surfaces.for_voxel(voxel, scratch, use); })
+        surfaces.for_voxel(voxel, scratch, use);
+    else
+        use(surfaces);
+}
 
 template <class Surfaces>
 void sample_voxel(const Surfaces& surfaces, glm::ivec3 voxel, const sampling_options& o, voxel_samples& out) {
     out.seen.clear();
     out.outcomes.clear();
     out.rays = o.rays, out.hits = 0;
+    const voxel_rays rays(voxel, o.rays, o.stratified, o.seed);
     for (std::uint32_t i = 0; i < o.rays; ++i) {
-        sampling_ray ray = voxel_ray(voxel, i, o.rays, o.stratified, o.seed);
+        sampling_ray ray = rays(i);
         segment_hit h = surfaces.first_surface(ray.origin, ray.direction, ray.length);
         out.hits += h.hit ? 1u : 0u;
         out.outcomes.push_back({glm::vec3(ray.direction), h.hit, h.sample ? std::int32_t(out.seen.size()) : -1});

@@ -148,6 +148,7 @@ struct mesh_surface {
 
 private:
     static int wrapped(int i, int n, texture_wrap mode) {
+        if (unsigned(i) < unsigned(n)) return i;  // inside: every mode leaves it (and skips the divisions)
         if (mode == texture_wrap::clamp) return std::clamp(i, 0, n - 1);
         int period = mode == texture_wrap::mirror ? 2 * n : n;
         int k = ((i % period) + period) % period;

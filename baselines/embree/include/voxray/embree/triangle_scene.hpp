@@ -3,9 +3,11 @@
 // first hit along a ray segment. Shared by the solid fill (solid_fill.hpp) and the
 // appearance precompute's sampling rays (voxray/appearance/precompute.hpp).
 #pragma once
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <optional>
+#include <vector>
 
 #include <embree3/rtcore.h>
 #include <glm/vec3.hpp>
@@ -41,10 +43,12 @@ public:
             device_.check("rtcSetNewGeometryBuffer");
             fail("Embree could not allocate the buffers of a mesh of ", mesh.triangles.size(), " triangles");
         }
+        positions_.reserve(mesh.positions.size());
         for (std::size_t i = 0; i < mesh.positions.size(); ++i) {
-            auto p = grid.to_voxel(mesh.positions[i]);
-            for (int k = 0; k < 3; ++k) vb[3 * i + k] = float(p[k]);
+            positions_.push_back(glm::vec3(grid.to_voxel(mesh.positions[i])));
+            for (int k = 0; k < 3; ++k) vb[3 * i + k] = positions_.back()[k];
         }
+        triangles_ = mesh.triangles;
         for (std::size_t i = 0; i < mesh.triangles.size(); ++i)
             for (int k = 0; k < 3; ++k) ib[3 * i + k] = mesh.triangles[i][k];
         rtcCommitGeometry(geom);
@@ -77,9 +81,32 @@ public:
         return h;
     }
 
+    // Appends to `out` the triangles whose bounds in the BVH meet the ball of `radius` about
+    // `centre`: a superset of those that reach any region inside the ball. Thread-safe.
+    void triangles_near(glm::vec3 centre, float radius, std::vector<std::uint32_t>& out) const {
+        RTCPointQuery query{};
+        query.x = centre.x, query.y = centre.y, query.z = centre.z, query.radius = radius;
+        RTCPointQueryContext context;
+        rtcInitPointQueryContext(&context);
+        rtcPointQuery(scene_.get(), &query, &context, collect_triangle, &out);
+    }
+
+    // Triangle `t`'s corners in voxel space, exactly as Embree holds them.
+    std::array<glm::vec3, 3> corners(std::uint32_t t) const {
+        const glm::u32vec3& i = triangles_[t];
+        return {positions_[i[0]], positions_[i[1]], positions_[i[2]]};
+    }
+
 private:
+    static bool collect_triangle(RTCPointQueryFunctionArguments* args) {
+        static_cast<std::vector<std::uint32_t>*>(args->userPtr)->push_back(args->primID);
+        return false;  // the query's ball stays as it is
+    }
+
     device device_;
     scene_handle scene_;
+    std::vector<glm::vec3> positions_;      // voxel space, the vertex buffer's copy
+    std::vector<glm::u32vec3> triangles_;  // the index buffer's copy
 };
 
 }  // namespace voxray::embree
