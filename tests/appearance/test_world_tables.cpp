@@ -3,11 +3,15 @@
 // not; a world's LOD 0 tables are the rows of the whole model's table; its LOD 0 cut walks as
 // the whole model does, and its LOD 1 and 2 cuts as the whole model's chain re-sampled in
 // memory; a missing or foreign table, a bad set name and a world of another mesh or resolution
-// are errors naming them.
+// are errors naming them; a stopped build resumes.
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <map>
+#include <set>
 
 #include "error_of.hpp"
 #include "temp_dir.hpp"
@@ -263,6 +267,56 @@ TEST(appearance_chunk_tables, foreign_or_missing_tables_bad_set_names_and_other_
         });
         EXPECT_NE(e.find("was not built from this mesh at resolution " + std::to_string(at)), std::string::npos) << e;
     }
+}
+
+// Every table file of `set`, path to bytes.
+std::map<std::string, std::string> table_files(const std::filesystem::path& dir, const std::string& set) {
+    std::map<std::string, std::string> out;
+    for (const auto& f : std::filesystem::recursive_directory_iterator(dir / "appearance" / set))
+        if (f.path().extension() == ".vxap") {
+            std::ifstream in(f.path(), std::ios::binary);
+            out[f.path().string()] = std::string(std::istreambuf_iterator<char>(in), {});
+        }
+    return out;
+}
+
+// A build run again keeps every table; one that lost a LOD 0 table (or holds a damaged one)
+// makes it and its ancestors again, the same bytes; other options start the set afresh.
+TEST(appearance_chunk_tables, a_stopped_build_resumes_and_other_options_start_afresh) {
+    io::triangle_mesh mesh = hills();
+    test::temp_dir dir;
+    hills_world first = build_hills_world(mesh, dir.path);
+    const world_manifest& m = first.manifest;
+    EXPECT_EQ(first.tables.resumed, 0u);
+    const auto made = table_files(dir.path, "compact");
+    ASSERT_EQ(made.size(), m.chunks.size());
+    embree::triangle_scene scene(mesh, io::make_grid_map(mesh.bounds(), resolution));
+    chunk_tables_options again;
+    again.sampling = few_rays, again.threads = 1;  // the thread count is not an option that changes a table
+    chunk_tables_report r = build_chunk_tables(scene, mesh, resolution, dir.path, again);
+    EXPECT_EQ(r.resumed, m.chunks.size());
+    EXPECT_EQ(r.lods[0].voxels, 0u);  // nothing sampled
+
+    // One LOD 0 table gone, another cut short: those two and their ancestors (one a LOD
+    // above each, shared from some LOD on) are made again, the rest kept.
+    std::vector<chunk_key> lod0 = chunks_at(m, 0);
+    const chunk_key gone = lod0.front(), damaged = lod0.back();
+    std::filesystem::remove(chunk_table_path(dir.path, "compact", gone));
+    std::filesystem::resize_file(chunk_table_path(dir.path, "compact", damaged), 100);
+    std::set<chunk_key, chunk_key_less> remade;
+    for (chunk_key k : {gone, damaged})
+        for (; k.lod <= m.grid.top_lod; k = {k.lod + 1, k.cell >> 1})
+            if (m.find(k)) remade.insert(k);
+    r = build_chunk_tables(scene, mesh, resolution, dir.path, again);
+    EXPECT_EQ(r.resumed, m.chunks.size() - remade.size());
+    EXPECT_EQ(table_files(dir.path, "compact"), made);  // the same bytes as the first build's
+
+    // Another seed: nothing kept, every table made again.
+    chunk_tables_options other = again;
+    other.sampling.seed = 9;
+    r = build_chunk_tables(scene, mesh, resolution, dir.path, other);
+    EXPECT_EQ(r.resumed, 0u);
+    EXPECT_NE(table_files(dir.path, "compact"), made);
 }
 
 }  // namespace

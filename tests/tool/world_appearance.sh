@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # world-build --appearance: a coloured glTF mesh's world and its appearance tables in one
 # step, one table file for every chunk at every LOD (the build's own table of chunks counts
-# them); --appearance from a scene without triangles, with --shard, or naming no one folder is
+# them), resumed when run again; --appearance from a scene without triangles, with --shard, or naming no one folder is
 # refused, before the world is built.
 #   world_appearance.sh TOOL DATA_DIR WORK_DIR
 set -euo pipefail
@@ -21,6 +21,23 @@ while read -r lod chunks _; do
 done < <(grep -E '^ +[0-9]+ +[0-9]+ +[0-9]+ ' "$work/build.txt")
 [[ $lods -ge 2 ]] && echo "ok   $lods LODs" || { echo "FAIL: $lods LODs in the build's table"; failures=$((failures + 1)); }
 grep -E "appearance tables ours: $lods LODs" "$work/build.txt" || { echo "FAIL: no tables line"; failures=$((failures + 1)); }
+
+# The same build again resumes: every chunk's table kept. With one LOD 0 table gone, that one
+# is made again, the same bytes.
+all=$(find "$work/world/appearance/ours" -name '*.vxap' | wc -l)
+one=$(find "$work/world/appearance/ours/lod0" -name '*.vxap' | sort | head -n 1)
+sum=$(md5sum "$one" | cut -d' ' -f1)
+"$tool" "${build[@]}" --appearance ours --out "$work/world" > "$work/again.txt" 2>&1 \
+    || { cat "$work/again.txt"; exit 1; }
+grep -E "appearance tables ours: $lods LODs, 0 voxels .* $all chunks' tables kept" "$work/again.txt" \
+    && echo "ok   run again: all $all tables kept" || { echo "FAIL: run again"; failures=$((failures + 1)); }
+rm "$one"
+"$tool" "${build[@]}" --appearance ours --out "$work/world" > "$work/resumed.txt" 2>&1 \
+    || { cat "$work/resumed.txt"; exit 1; }
+kept=$(sed -nE "s/.* ([0-9]+) chunks' tables kept.*/\1/p" "$work/resumed.txt")
+[[ -f "$one" && "$(md5sum "$one" | cut -d' ' -f1)" == "$sum" && $kept -lt $all && $kept -ge $((all - lods)) ]] \
+    && echo "ok   one table gone: made again, the same bytes ($kept of $all kept)" \
+    || { echo "FAIL: one table gone ($kept of $all kept)"; failures=$((failures + 1)); }
 
 expect_failure "--appearance without triangles" "--appearance: tables are made from a mesh" \
     "$tool" world-build builtin:menger:27 --chunk-bits 4 --appearance ours --out "$work/menger"

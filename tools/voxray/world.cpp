@@ -117,8 +117,10 @@ void build_appearance_tables(const io::triangle_mesh& mesh, const build_options&
     appearance::chunk_tables_report r = appearance::build_chunk_tables(scene, mesh, o.scene.resolution, o.out, tables);
     std::uint64_t voxels = 0;
     for (const auto& lod : r.lods) voxels += lod.voxels;
-    std::printf("appearance tables %s: %zu LODs, %llu voxels in %.1f s, in %s\n", o.appearance.c_str(), r.lods.size(),
-                (unsigned long long)voxels, r.seconds,
+    std::printf("appearance tables %s: %zu LODs, %llu voxels in %.1f s, %llu chunks' tables kept from an earlier run,"
+                " in %s\n",
+                o.appearance.c_str(), r.lods.size(), (unsigned long long)voxels, r.seconds,
+                (unsigned long long)r.resumed,
                 (std::filesystem::path(o.out) / "appearance" / o.appearance).string().c_str());
 #else
     (void)mesh, (void)o;  // refused before the build (check_appearance_request)

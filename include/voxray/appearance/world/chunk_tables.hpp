@@ -10,14 +10,22 @@
 // so the walk of a chunk is the walk of the chunk file as it is.
 //
 //   dir/appearance/<set>/lod<n>/<x>_<y>_<z>.vxap    (a set: one chain of tables, e.g. "compact")
+//   dir/appearance/<set>/made_with.txt               what they were made with (set_stamp)
 //
+// A build that was stopped resumes like the geometry's: where the set's stamp matches this
+// build's, every chunk whose table file is there and sound (it loads, of the expected kind,
+// its rows the chunk's voxels, and no child of it made again) is kept; a stamp that differs
+// (other options, another world) clears the set first.
 // A world and its LOD cut walked with them: chunk_walker_of, cut_walker.
 #pragma once
 #include <algorithm>
 #include <chrono>
 #include <filesystem>
+#include <fstream>
 #include <functional>
+#include <iterator>
 #include <memory>
+#include <set>
 #include <span>
 #include <string>
 #include <vector>
@@ -53,7 +61,8 @@ struct chunk_tables_options {
 };
 
 struct chunk_tables_report {
-    std::vector<precompute_stats> lods;  // per LOD: voxels, rays, hits and seconds summed over its chunks
+    std::vector<precompute_stats> lods;  // per LOD: voxels, rays, hits and seconds of the tables made
+    std::uint64_t resumed = 0;           // chunks whose table an earlier run made, kept
     double seconds = 0;
 };
 
@@ -128,6 +137,51 @@ inline void add_stats(precompute_stats& sum, const precompute_stats& s) {
     sum.voxels += s.voxels, sum.rays += s.rays, sum.hits += s.hits, sum.seconds += s.seconds;
 }
 
+// One line saying what a set's tables are made of and with: the world (its source hash and
+// chunk count) and every option that changes a table (not the thread count: tables do not
+// depend on it).
+inline std::string set_stamp(const world_manifest& m, const chunk_tables_options& o) {
+    return "voxray appearance set 1: world " + std::to_string(m.source_hash) + " chunks " +
+           std::to_string(m.chunks.size()) + " finest " + std::to_string(int(o.finest)) + " coarser " +
+           std::to_string(int(o.coarser)) + " finest_from \"" + o.finest_from + "\" rays " +
+           std::to_string(o.sampling.rays) + " stratified " + std::to_string(int(o.sampling.stratified)) + " seed " +
+           std::to_string(o.sampling.seed) + " opacity_strata " + std::to_string(o.opacity_strata) + "\n";
+}
+
+inline std::string read_text(const std::filesystem::path& path) {
+    std::ifstream in(path, std::ios::binary);
+    return in ? std::string(std::istreambuf_iterator<char>(in), {}) : std::string();
+}
+
+// Readies dir/appearance/<set> for a build stamped `stamp`: kept as it is when its stamp is
+// the same (a resumed build), else emptied and stamped. False when nothing can be kept.
+inline bool ready_set_folder(const std::filesystem::path& folder, const std::string& stamp) {
+    const auto stamp_path = folder / "made_with.txt";
+    if (read_text(stamp_path) == stamp) return true;
+    std::filesystem::remove_all(folder);  // tables of other options: none may be taken for this build's
+    std::filesystem::create_directories(folder);
+    std::ofstream out(stamp_path, std::ios::binary | std::ios::trunc);
+    out << stamp;
+    if (!out) fail("appearance chunk tables: cannot write ", stamp_path.string());
+    return false;
+}
+
+// The table an earlier run of the same build left for chunk `c`, if it is there and sound.
+inline bool resumable_table(const std::filesystem::path& path, const chunk_record& c, record_kind kind,
+                            appearance_table& out) {
+    std::error_code ec;
+    if (!std::filesystem::exists(path, ec)) return false;
+    try {
+        out = load_table(path);
+    } catch (const error&) {
+        return false;  // half written or damaged: make it again
+    }
+    if (out.kind != kind || out.shadows || out.size() != c.voxel_count) return false;
+    std::vector<glm::ivec3> voxels = chunk_voxels_of(c);
+    std::sort(voxels.begin(), voxels.end(), ordinal_less);  // the rows' order
+    return out.voxels == voxels;
+}
+
 }  // namespace chunk_tables_detail
 
 // The tables of every chunk of the world in `dir`, built (world/build/world_build.hpp) from
@@ -151,11 +205,26 @@ chunk_tables_report build_chunk_tables(const Scene& scene, const io::triangle_me
         return precompute_options{.kind = kind, .sampling = o.sampling, .opacity_strata = o.opacity_strata,
                                   .threads = o.threads, .light = {}};
     };
+    const bool resuming = ready_set_folder(dir / "appearance" / o.set, set_stamp(m, o));
+    std::set<chunk_key, chunk_key_less> made;  // tables this run made: their parents are made again too
     for (const manifest_chunk& listed : m.chunks) {  // by LOD: every child is done before its parent
         const chunk_key& k = listed.key;
         chunk_record c = read_listed_chunk(dir, m, k);
         precompute_stats stats;
         appearance_table t;
+        auto path = chunk_table_path(dir, o.set, k);
+        bool children_kept = true;
+        for (int octant = 0; octant < 8 && k.lod > 0; ++octant) {
+            glm::ivec3 step(octant & 1, (octant >> 1) & 1, octant >> 2);
+            children_kept = children_kept && !made.count({k.lod - 1, k.cell * 2 + step});
+        }
+        if (resuming && children_kept &&
+            resumable_table(path, c, k.lod == 0 ? o.finest : o.coarser, t)) {
+            ++report.resumed;
+            if (o.progress) o.progress(k, stats);  // nothing sampled in this run
+            continue;
+        }
+        made.insert(k);
         if (k.lod == 0 && !o.finest_from.empty()) {
             t = load_chunk_table(dir, o.finest_from, c);
         } else if (k.lod == 0) {
@@ -175,7 +244,6 @@ chunk_tables_report build_chunk_tables(const Scene& scene, const io::triangle_me
             }
             t = resample(below, chunk_voxels_of(c), options_for(o.coarser), &stats);
         }
-        auto path = chunk_table_path(dir, o.set, k);
         std::filesystem::create_directories(path.parent_path());
         save_table(t, path);
         add_stats(report.lods[std::size_t(k.lod)], stats);
