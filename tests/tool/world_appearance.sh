@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # world-build --appearance: a coloured glTF mesh's world and its appearance tables in one
 # step, one table file for every chunk at every LOD (the build's own table of chunks counts
-# them), resumed when run again; --appearance from a scene without triangles, with --shard, or naming no one folder is
+# them), resumed when run again, and walked by world-fly --appearance; --appearance from a
+# scene without triangles, with --shard, or naming no one folder is
 # refused, before the world is built.
 #   world_appearance.sh TOOL DATA_DIR WORK_DIR
 set -euo pipefail
@@ -38,6 +39,21 @@ kept=$(sed -nE "s/.* ([0-9]+) chunks' tables kept.*/\1/p" "$work/resumed.txt")
 [[ -f "$one" && "$(md5sum "$one" | cut -d' ' -f1)" == "$sum" && $kept -lt $all && $kept -ge $((all - lods)) ]] \
     && echo "ok   one table gone: made again, the same bytes ($kept of $all kept)" \
     || { echo "FAIL: one table gone ($kept of $all kept)"; failures=$((failures + 1)); }
+
+# world-fly --appearance: each frame's LOD cut walked through the tables, beside the traced
+# frame: a picture and a JSON record a frame, voxels blended where the flight sees the tree.
+fly=(world-fly "$work/world" --frames 2 --width 64 --height 40)
+"$tool" "${fly[@]}" --appearance ours --png-dir "$work/fly" --json "$work/fly.jsonl" > "$work/fly.txt" 2>&1 \
+    || { cat "$work/fly.txt"; exit 1; }
+pictures=$(find "$work/fly" -name 'appearance_*.png' | wc -l)
+blended=$(grep -cE '"appearance":\{[^}]*"visits_per_ray":[0-9.e-]*[1-9]' "$work/fly.jsonl" || true)
+[[ $pictures -eq 2 && $blended -ge 1 ]] && grep -qE "appearance ours: [0-9]+ chunks in the cut" "$work/fly.txt" \
+    && echo "ok   world-fly --appearance: $pictures pictures, $blended frames with voxels blended" \
+    || { echo "FAIL world-fly --appearance: $pictures pictures, $blended frames blended"; failures=$((failures + 1)); }
+expect_failure "world-fly --appearance of a set the world lacks" "appearance/none does not exist" \
+    "$tool" "${fly[@]}" --appearance none
+expect_failure "world-fly --appearance with --passes" "--appearance walks the traced frame's rays" \
+    "$tool" "${fly[@]}" --appearance ours --passes
 
 expect_failure "--appearance without triangles" "--appearance: tables are made from a mesh" \
     "$tool" world-build builtin:menger:27 --chunk-bits 4 --appearance ours --out "$work/menger"

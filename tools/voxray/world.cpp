@@ -21,6 +21,7 @@
 #include "output.hpp"
 #include "scene.hpp"
 #include "ssim.hpp"
+#include "world_fly_appearance.hpp"
 #include "world_meta.hpp"
 #include "world_raster.hpp"
 #include "voxray/gltf/coloured_mesh.hpp"
@@ -264,6 +265,7 @@ struct fly_options {
     double factor = 2.0, budget_mib = 1024;
     bool lod0 = false, passes = false, raster = false;
     float lod_bias = 8.0f;  // --raster: POP inside each chunk, t = log2(distance in its cells) - bias
+    std::string appearance;  // a set of the world's appearance tables, walked beside the traced frame
 };
 
 // The camera path: along the world's longest horizontal axis, a third of the way up,
@@ -297,6 +299,8 @@ int fly(const fly_options& o) {
     if (!o.png_dir.empty()) require_writable_folder(o.png_dir, "--png-dir");
     if (o.raster && o.passes)
         fail("--raster compares with the traced frame, which --passes does not make: use one of them");
+    if (!o.appearance.empty() && o.passes)
+        fail("--appearance walks the traced frame's rays, which --passes does not make: use one of them");
     residency_options ro;
     ro.streaming_factor = o.lod0 ? 1e9 : o.factor;
     ro.budget_bytes = o.lod0 ? std::uint64_t(-1) / 2 : std::uint64_t(o.budget_mib * 1048576.0);
@@ -315,6 +319,8 @@ int fly(const fly_options& o) {
     if (o.passes) passes.emplace(t);
     std::optional<world_raster> raster;  // --raster: the shown chunks meshed and drawn beside the traced frame
     if (o.raster) raster.emplace(pal, colours, up_axis, o.lod_bias);
+    std::optional<fly_appearance> filtered;  // --appearance: the cut walked through its tables
+    if (!o.appearance.empty()) filtered.emplace(o.dir, m, o.appearance, 0);
     float far_depth = glm::length(glm::vec3(m.bounds.extent())) * 1.5f + 64.0f;
     if (o.passes)
         std::printf("%5s %9s %9s %9s %9s %9s %9s %9s %7s %7s %8s %12s %8s\n", "frame", "update ms", "upload ms", "select ms",
@@ -399,6 +405,16 @@ int fly(const fly_options& o) {
             write_image((std::filesystem::path(o.png_dir) / name).string(), width, o.height, rgb);
         };
         if (!o.png_dir.empty()) png("frame_%03d.png", o.width, picture(true));
+        json appearance_line;
+        if (filtered) {
+            fly_appearance::frame a = filtered->walk(rays, glm::dvec3(cam.position), ro.streaming_factor, sun, up_axis);
+            std::printf("      appearance %s: %zu chunks in the cut (%zu read in %.1f ms), walked in %.1f ms, "
+                        "%.2f voxels blended a ray\n",
+                        o.appearance.c_str(), a.chunks, a.read, a.read_ms, a.walk_ms, a.visits);
+            appearance_line = {{"set", o.appearance}, {"chunks", a.chunks},   {"chunks_read", a.read},
+                               {"read_ms", a.read_ms}, {"walk_ms", a.walk_ms}, {"visits_per_ray", a.visits}};
+            if (!o.png_dir.empty()) png("appearance_%03d.png", o.width, a.rgb);
+        }
         json raster_line;
         if (raster) {
             // The traced frame lit as the raster path lights (no shadows), for SSIM.
@@ -437,6 +453,7 @@ int fly(const fly_options& o) {
                       {"resident_bytes", s.resident_bytes}, {"device_bytes", world.bytes()}, {"disk_bytes", m.disk_bytes()},
                       {"failures", s.failures}};
             if (raster) line["raster"] = raster_line;
+            if (filtered) line["appearance"] = appearance_line;
             if (o.passes) {
                 json per_pass = json::object();
                 for (std::size_t k = 0; k < fs.ms.size(); ++k) per_pass[std::string(frame_stats::pass_names[k])] = fs.ms[k];
@@ -502,7 +519,12 @@ command add_world_fly(CLI::App& parent) {
     app->add_option("--lod-bias", o->lod_bias, "--raster: POP t = log2(distance in a chunk's cells) - bias")
         ->check(finite_range(-64.0, 64.0))
         ->capture_default_str();
-    app->add_option("--png-dir", o->png_dir, "write frame_NNN.png here (with --raster: raster_and_traced_NNN.png too)");
+    app->add_option("--appearance", o->appearance,
+                    "also walk each frame's LOD cut through the world's appearance tables of this set "
+                    "(world-build MESH --appearance SET), on the CPU");
+    app->add_option("--png-dir", o->png_dir,
+                    "write frame_NNN.png here (with --raster: raster_and_traced_NNN.png too; with --appearance: "
+                    "appearance_NNN.png)");
     app->add_option("--json", o->json_out, "append one JSON line a frame");
     return {app, [o] {
                 int rc = 2;
