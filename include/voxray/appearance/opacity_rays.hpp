@@ -46,7 +46,7 @@ directional_opacities directional_opacity(const Surfaces& surfaces, glm::ivec3 v
                 p[axis] = d[axis] > 0 ? 0.0 : 1.0;
                 p[u] = (double(cell % strata) + stream.uniform01(id, 0)) / double(strata);
                 p[v] = (double(cell / strata) + stream.uniform01(id, 1)) / double(strata);
-                covered += surfaces.first_surface(glm::dvec3(voxel) + p, d, exit_length(p, d)).coverage;
+                covered += surfaces.coverage(glm::dvec3(voxel) + p, d, exit_length(p, d));
             }
         }
         alpha[k] = covered / double(rays);

@@ -71,6 +71,10 @@ struct finer_level_surfaces {
     const Walker& finer;
     std::uint64_t seed = 1;
 
+    float coverage(glm::dvec3 origin, glm::dvec3 direction, double length) const {
+        return first_surface(origin, direction, length).coverage;
+    }
+
     segment_hit first_surface(glm::dvec3 origin, glm::dvec3 direction, double length) const {
         // In the finer level's voxels, a hair inside the coarse voxel at both ends: a ray
         // that starts on a voxel's side must not be taken for one in the neighbour behind it.

@@ -58,10 +58,11 @@ struct segment_hit {
     surface_sample seen;
 };
 
-// The first surface along the segment from `origin` (on the voxel's surface) for `length`.
+// The first surface along the segment from `origin` (on the voxel's surface) for `length`;
+// without `with_colour`, only whether and where it stops (the sample's colour left white).
 template <class Scene>
 segment_hit first_surface(const Scene& scene, const io::triangle_mesh& mesh, glm::dvec3 origin, glm::dvec3 direction,
-                          double length) {
+                          double length, bool with_colour = true) {
     const io::mesh_surface& s = mesh.surface;
     constexpr float margin = 1e-4f;  // surfaces on the voxel's own faces count, from both sides
     glm::vec3 dir(direction), org = glm::vec3(origin) - margin * dir;  // Embree wants tnear >= 0
@@ -73,7 +74,8 @@ segment_hit first_surface(const Scene& scene, const io::triangle_mesh& mesh, glm
         bool double_sided = false;
         if (s.coloured()) {
             const io::mesh_material& m = s.materials[s.triangle_materials[hit->triangle]];
-            colour = s.colour_at(hit->triangle, hit->barycentric);
+            colour = with_colour ? s.colour_at(hit->triangle, hit->barycentric)
+                                 : glm::vec4(1.0f, 1.0f, 1.0f, s.alpha_at(hit->triangle, hit->barycentric));
             double_sided = m.double_sided;
             if (m.cuts() && colour.a < m.cutoff()) {  // cut out here: go on behind it
                 tnear = hit->t + std::max(margin, hit->t * 0x1.0p-18f);
@@ -97,11 +99,14 @@ struct voxel_triangle_surfaces {
     segment_hit first_surface(glm::dvec3 origin, glm::dvec3 direction, double length) const {
         return appearance::first_surface(near, mesh, origin, direction, length);
     }
+    float coverage(glm::dvec3 origin, glm::dvec3 direction, double length) const {
+        return appearance::first_surface(near, mesh, origin, direction, length, false).coverage;
+    }
 };
 
 // What the sampling rays of a table meet: the original triangles. (A coarser level's rays
 // meet the finer level's filtered voxels instead: appearance/resample.hpp.) Any type with
-// this first_surface does; the voxel space is the table's.
+// this first_surface and coverage does; the voxel space is the table's.
 template <class Scene>
 struct triangle_surfaces {
     const Scene& scene;
@@ -109,6 +114,10 @@ struct triangle_surfaces {
 
     segment_hit first_surface(glm::dvec3 origin, glm::dvec3 direction, double length) const {
         return appearance::first_surface(scene, mesh, origin, direction, length);
+    }
+    // How much of the segment's ray stops (first_surface's coverage, its colour not looked up).
+    float coverage(glm::dvec3 origin, glm::dvec3 direction, double length) const {
+        return appearance::first_surface(scene, mesh, origin, direction, length, false).coverage;
     }
 
     // Calls use(surfaces) with these surfaces as the rays of `voxel` meet them: its own

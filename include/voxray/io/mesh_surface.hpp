@@ -109,23 +109,10 @@ struct mesh_surface {
     }
 
     // The linear RGBA of triangle t at barycentric coordinates `b` (weights of its 3 corners).
-    glm::vec4 colour_at(std::size_t t, glm::dvec3 b) const {
-        const mesh_material& m = materials[triangle_materials[t]];
-        glm::vec4 c = m.base_colour;
-        if (!corner_colours.empty())
-            c *= corner_colours[3 * t] * float(b.x) + corner_colours[3 * t + 1] * float(b.y) +
-                 corner_colours[3 * t + 2] * float(b.z);
-        if ((m.texture >= 0 || m.alpha_texture >= 0) && !corner_uvs.empty()) {
-            glm::vec2 uv = corner_uvs[3 * t] * float(b.x) + corner_uvs[3 * t + 1] * float(b.y) +
-                           corner_uvs[3 * t + 2] * float(b.z);
-            if (m.texture >= 0) {
-                glm::vec4 texel = sample(textures[std::size_t(m.texture)], uv);
-                c *= glm::vec4(srgb_to_linear(texel.r), srgb_to_linear(texel.g), srgb_to_linear(texel.b), texel.a);
-            }
-            if (m.alpha_texture >= 0) c.a *= sample(textures[std::size_t(m.alpha_texture)], uv).r;
-        }
-        return c;
-    }
+    glm::vec4 colour_at(std::size_t t, glm::dvec3 b) const { return surface_at(t, b, true); }
+
+    // Its alpha alone (what the alpha rule reads), without decoding a texel's colour.
+    float alpha_at(std::size_t t, glm::dvec3 b) const { return surface_at(t, b, false).a; }
 
     // Bilinear sample of `tex` at `uv` (channels 0..1, as stored: sRGB for colour textures).
     static glm::vec4 sample(const mesh_texture& tex, glm::vec2 uv) {
@@ -147,6 +134,26 @@ struct mesh_surface {
     }
 
 private:
+    // colour_at, or (rgb false) its alpha with the colour channels left undecoded (1).
+    glm::vec4 surface_at(std::size_t t, glm::dvec3 b, bool rgb) const {
+        const mesh_material& m = materials[triangle_materials[t]];
+        glm::vec4 c = m.base_colour;
+        if (!corner_colours.empty())
+            c *= corner_colours[3 * t] * float(b.x) + corner_colours[3 * t + 1] * float(b.y) +
+                 corner_colours[3 * t + 2] * float(b.z);
+        if ((m.texture >= 0 || m.alpha_texture >= 0) && !corner_uvs.empty()) {
+            glm::vec2 uv = corner_uvs[3 * t] * float(b.x) + corner_uvs[3 * t + 1] * float(b.y) +
+                           corner_uvs[3 * t + 2] * float(b.z);
+            if (m.texture >= 0) {
+                glm::vec4 texel = sample(textures[std::size_t(m.texture)], uv);
+                if (rgb) texel = {srgb_to_linear(texel.r), srgb_to_linear(texel.g), srgb_to_linear(texel.b), texel.a};
+                c *= rgb ? texel : glm::vec4(1.0f, 1.0f, 1.0f, texel.a);
+            }
+            if (m.alpha_texture >= 0) c.a *= sample(textures[std::size_t(m.alpha_texture)], uv).r;
+        }
+        return c;
+    }
+
     static int wrapped(int i, int n, texture_wrap mode) {
         if (unsigned(i) < unsigned(n)) return i;  // inside: every mode leaves it (and skips the divisions)
         if (mode == texture_wrap::clamp) return std::clamp(i, 0, n - 1);
