@@ -91,19 +91,6 @@ segment_hit first_surface(const Scene& scene, const io::triangle_mesh& mesh, glm
     return {};
 }
 
-// The original triangles as one voxel's rays meet them: its short list (voxel_triangles.hpp).
-struct voxel_triangle_surfaces {
-    const voxel_triangles& near;
-    const io::triangle_mesh& mesh;
-
-    segment_hit first_surface(glm::dvec3 origin, glm::dvec3 direction, double length) const {
-        return appearance::first_surface(near, mesh, origin, direction, length);
-    }
-    float coverage(glm::dvec3 origin, glm::dvec3 direction, double length) const {
-        return appearance::first_surface(near, mesh, origin, direction, length, false).coverage;
-    }
-};
-
 // What the sampling rays of a table meet: the original triangles. (A coarser level's rays
 // meet the finer level's filtered voxels instead: appearance/resample.hpp.) Any type with
 // this first_surface and coverage does; the voxel space is the table's.
@@ -121,15 +108,15 @@ struct triangle_surfaces {
     }
 
     // Calls use(surfaces) with these surfaces as the rays of `voxel` meet them: its own
-    // triangles through `scratch` where the scene can list them and they are few, else
-    // the whole scene. The hits are the same either way.
+    // triangles (a voxel_triangles scene) through `scratch` where the scene can list them and
+    // they are few, else the whole scene. The hits are the same either way.
     template <class Use>
     void for_voxel(glm::ivec3 voxel, voxel_triangles& scratch, Use&& use) const {
         if constexpr (requires(std::vector<std::uint32_t>& out) {
                           scene.triangles_near(glm::vec3(0.0f), 1.0f, out);
                           scene.corners(0u);
                       }) {
-            if (scratch.gather(scene, voxel)) return use(voxel_triangle_surfaces{scratch, mesh});
+            if (scratch.gather(scene, voxel)) return use(triangle_surfaces<voxel_triangles>{scratch, mesh});
         }
         use(*this);
     }
