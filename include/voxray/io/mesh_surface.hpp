@@ -146,8 +146,8 @@ private:
                            corner_uvs[3 * t + 2] * float(b.z);
             if (m.texture >= 0) {
                 glm::vec4 texel = sample(textures[std::size_t(m.texture)], uv);
-                if (rgb) texel = {srgb_to_linear(texel.r), srgb_to_linear(texel.g), srgb_to_linear(texel.b), texel.a};
-                c *= rgb ? texel : glm::vec4(1.0f, 1.0f, 1.0f, texel.a);
+                c *= rgb ? glm::vec4(srgb_to_linear(texel.r), srgb_to_linear(texel.g), srgb_to_linear(texel.b), texel.a)
+                         : glm::vec4(1.0f, 1.0f, 1.0f, texel.a);
             }
             if (m.alpha_texture >= 0) c.a *= sample(textures[std::size_t(m.alpha_texture)], uv).r;
         }

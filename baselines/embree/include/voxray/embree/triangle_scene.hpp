@@ -43,12 +43,11 @@ public:
             device_.check("rtcSetNewGeometryBuffer");
             fail("Embree could not allocate the buffers of a mesh of ", mesh.triangles.size(), " triangles");
         }
-        positions_.reserve(mesh.positions.size());
         for (std::size_t i = 0; i < mesh.positions.size(); ++i) {
-            positions_.push_back(glm::vec3(grid.to_voxel(mesh.positions[i])));
-            for (int k = 0; k < 3; ++k) vb[3 * i + k] = positions_.back()[k];
+            auto p = grid.to_voxel(mesh.positions[i]);
+            for (int k = 0; k < 3; ++k) vb[3 * i + k] = float(p[k]);
         }
-        triangles_ = mesh.triangles;
+        vertices_ = vb, indices_ = ib;  // Embree's own buffers, alive as long as the scene
         for (std::size_t i = 0; i < mesh.triangles.size(); ++i)
             for (int k = 0; k < 3; ++k) ib[3 * i + k] = mesh.triangles[i][k];
         rtcCommitGeometry(geom);
@@ -93,8 +92,11 @@ public:
 
     // Triangle `t`'s corners in voxel space, exactly as Embree holds them.
     std::array<glm::vec3, 3> corners(std::uint32_t t) const {
-        const glm::u32vec3& i = triangles_[t];
-        return {positions_[i[0]], positions_[i[1]], positions_[i[2]]};
+        auto corner = [&](int k) {
+            const float* v = vertices_ + 3 * std::size_t(indices_[3 * std::size_t(t) + std::size_t(k)]);
+            return glm::vec3(v[0], v[1], v[2]);
+        };
+        return {corner(0), corner(1), corner(2)};
     }
 
 private:
@@ -105,8 +107,8 @@ private:
 
     device device_;
     scene_handle scene_;
-    std::vector<glm::vec3> positions_;      // voxel space, the vertex buffer's copy
-    std::vector<glm::u32vec3> triangles_;  // the index buffer's copy
+    const float* vertices_ = nullptr;    // voxel space, 3 a vertex
+    const unsigned* indices_ = nullptr;  // 3 a triangle
 };
 
 }  // namespace voxray::embree
