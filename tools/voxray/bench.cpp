@@ -169,7 +169,8 @@ void print_row(const nlohmann::json& r) {
     }
     auto limited = r["limitation_rays"].get<std::uint64_t>();
     std::string label = limited ? "  (+" + std::to_string(limited) + " labelled: " + r["limitation"].get<std::string>() + ")" : "";
-    if (r["kernel_mrays_median"].is_number())  // a device's kernels alone, beside the whole trace
+    // A device's kernels alone, beside the whole trace (NaN where the backend has no kernel timing).
+    if (r["kernel_mrays_median"].is_number() && std::isfinite(r["kernel_mrays_median"].get<double>()))
         label += "  (kernel " + std::to_string(std::lround(r["kernel_mrays_median"].get<double>())) + " Mrays/s)";
     std::printf("%-22s %-14s %-11s %-10s %9.2f %9.2f %9.2f %9.2f %9.2f %10llu%s\n", r["scene"].get<std::string>().c_str(),
                 r["structure"].get<std::string>().c_str(), r["backend"].get<std::string>().c_str(),

@@ -69,7 +69,7 @@ VX_FN vx_f32 vx_dda_exit_t_sized(vx_i32 c, vx_i32 size, vx_i32 step, vx_f32 o, v
 
 /* t at which the ray leaves cell c along one axis. */
 VX_FN vx_f32 vx_dda_exit_t(vx_i32 c, vx_i32 step, vx_f32 o, vx_f32 inv) {
-    return vx_sel(step != 0, (vx_i2f(c + vx_sel(step > 0, 1, 0)) - o) * inv, VX_INF);
+    return vx_sel(step != 0, (vx_i2f(c + ((step + 1) >> 1)) - o) * inv, VX_INF);
 }
 
 /* Sets up the walk of ray r (in world units) through a grid whose cell (0,0,0) has its
