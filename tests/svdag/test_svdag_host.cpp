@@ -27,12 +27,18 @@ svdag_options with_threads(unsigned threads) {
     return o;
 }
 
-// The voxels below a node, recounted from its children (leaves: their set bits).
+// The voxels below a node, recounted from its children (leaves: their set bits); the
+// node's counts below each child after the first, against the recount of those before it.
 std::uint64_t recount(std::span<const std::uint32_t> w, std::uint32_t node, int depth, int d) {
     if (d == depth - VX_SV_LEAF_EDGE_BITS) return std::uint64_t(std::popcount(w[node]) + std::popcount(w[node + 1]));
     std::uint64_t n = 0;
     int children = std::popcount(w[node] & VX_SV_NODE_MASK_BITS);
-    for (int k = 0; k < children; ++k) n += recount(w, w[node + VX_SV_NODE_CHILDREN + k], depth, d + 1);
+    for (int k = 0; k < children; ++k) {
+        if (k > 0) {
+            EXPECT_EQ(w[node + VX_SV_NODE_BELOW(children, k)], n) << "node at word " << node << ", child " << k;
+        }
+        n += recount(w, w[node + VX_SV_NODE_CHILDREN + k], depth, d + 1);
+    }
     EXPECT_EQ(w[node + 1], n) << "node at word " << node << ", depth " << d;
     return n;
 }

@@ -11,6 +11,7 @@
 #include <filesystem>
 #include <fstream>
 #include <functional>
+#include <stdexcept>
 #include <string>
 #include <unistd.h>
 #include <vector>
@@ -230,7 +231,7 @@ TEST(chunk_file, wrong_fields_under_a_valid_checksum_are_errors_at_their_offset)
         {40, max_x - 1, "solid max " + std::to_string(max_x - 1) + " is not the DAG's voxels' " + std::to_string(max_x)},
         {32, min_y + 1, "solid min " + std::to_string(min_y + 1) + " is not the DAG's voxels' " + std::to_string(min_y)},
         {56, voxels + 1, "does not match the DAG root's count"},
-        {56, 0, "words is outside [24, 56], the most a DAG of 0 voxels in a chunk of 2^5 a side can need", 64},
+        {56, 0, "words is outside [24, 77], the most a DAG of 0 voxels in a chunk of 2^5 a side can need", 64},
         {56, 32 * 32 * 32 + 1, "voxel count 32769 is more than the chunk's 32768 voxels"},
         {80 + 4 * VX_SV_HEADER_ORIGIN, 16, "DAG origin 16 (expected 0)"},
         {80 + 4 * (VX_SV_HEADER_SHIFT + 2), 1, "DAG shift 1 (expected 0)"},
@@ -253,7 +254,7 @@ TEST(chunk_file, wrong_fields_under_a_valid_checksum_are_errors_at_their_offset)
 
 // Word offsets in a builder blob that the structural cases below tamper with.
 struct dag_map {
-    std::uint32_t root = VX_SV_HEADER_WORDS, node_end, first_child, grandchild, last_slot;
+    std::uint32_t root = VX_SV_HEADER_WORDS, node_end, first_child, grandchild, last_slot, root_below_last;
 };
 
 dag_map map_of(const blob_words& w) {
@@ -261,7 +262,10 @@ dag_map map_of(const blob_words& w) {
     m.node_end = VX_SV_HEADER_WORDS + w[VX_SV_HEADER_NODE_WORDS];
     m.first_child = w[m.root + VX_SV_NODE_CHILDREN];
     m.grandchild = w[m.first_child + VX_SV_NODE_CHILDREN];
-    m.last_slot = m.root + VX_SV_NODE_CHILDREN + std::uint32_t(std::popcount(w[m.root])) - 1;
+    const std::uint32_t children = std::uint32_t(std::popcount(w[m.root]));
+    m.last_slot = m.root + VX_SV_NODE_CHILDREN + children - 1;
+    if (children < 2) throw std::logic_error("the tampered blob's root needs two children");
+    m.root_below_last = m.root + VX_SV_NODE_BELOW(children, children - 1);
     return m;
 }
 
@@ -281,6 +285,7 @@ std::vector<structure_case> structure_cases() {
         {"node at two depths", [](blob_words& w, const dag_map& m) { w[m.last_slot] = m.grandchild; }, "also at depth"},
         {"wrong root count", [](blob_words& w, const dag_map& m) { w[m.root + 1] += 1; }, "is not its children's sum"},
         {"wrong inner count", [](blob_words& w, const dag_map& m) { w[m.first_child + 1] -= 1; }, "is not its children's sum"},
+        {"wrong count below a child", [](blob_words& w, const dag_map& m) { w[m.root_below_last] += 1; }, "not its earlier siblings' sum"},
         {"mask bit 9", [](blob_words& w, const dag_map& m) { w[m.root] |= 1u << 9; }, "has bits above bit 7"},
         {"mask bit 8", [](blob_words& w, const dag_map& m) { w[m.first_child] |= 1u << 8; }, "has bits above bit 7"},
         {"empty leaf", [](blob_words& w, const dag_map& m) { w[m.node_end - 2] = w[m.node_end - 1] = 0; }, "leaf has an empty mask"},

@@ -189,7 +189,7 @@ inline built assemble(leaf_scan leaves, const dag_frame& frame, const svdag_opti
     for (int d = 0; d < leaf_depth; ++d)
         for (auto& n : nodes[std::size_t(d)]) {
             address[std::size_t(d)].push_back(cursor);
-            cursor += VX_SV_NODE_CHILDREN + std::uint64_t(std::popcount(n.mask));
+            cursor += VX_SV_NODE_WORDS(std::uint64_t(std::popcount(n.mask)));
         }
     for (std::size_t u = 0; u < leaf_masks.size(); ++u) {
         address[std::size_t(leaf_depth)].push_back(cursor);
@@ -228,14 +228,23 @@ inline built assemble(leaf_scan leaves, const dag_frame& frame, const svdag_opti
     w[VX_SV_HEADER_ATTRIBUTES] = std::uint32_t(node_end);
     for (int d = 0; d < leaf_depth; ++d) {
         auto& child_address = address[std::size_t(d) + 1];
+        // The children's counts: the level below's, or the leaves' popcounts.
+        auto child_count = [&](std::uint32_t child) {
+            return d + 1 < leaf_depth ? counts[std::size_t(d) + 1][child] : std::uint64_t(std::popcount(leaf_masks[child]));
+        };
         for (std::size_t u = 0; u < nodes[std::size_t(d)].size(); ++u) {
             const interior& n = nodes[std::size_t(d)][u];
             std::uint64_t at = address[std::size_t(d)][u];
+            const unsigned children = unsigned(std::popcount(n.mask));
             w[at] = n.mask;
             w[at + 1] = std::uint32_t(counts[std::size_t(d)][u]);
-            std::uint64_t slot = at + VX_SV_NODE_CHILDREN;
-            for (unsigned o = 0; o < 8; ++o)
-                if (n.mask >> o & 1u) w[slot++] = std::uint32_t(child_address[n.child[o]]);
+            std::uint64_t below = 0;
+            for (unsigned o = 0, k = 0; o < 8; ++o) {
+                if (!(n.mask >> o & 1u)) continue;
+                if (k > 0) w[at + VX_SV_NODE_BELOW(children, k)] = std::uint32_t(below);
+                w[at + VX_SV_NODE_CHILDREN + k++] = std::uint32_t(child_address[n.child[o]]);
+                below += child_count(n.child[o]);
+            }
         }
     }
     for (std::size_t u = 0; u < leaf_masks.size(); ++u) {

@@ -17,19 +17,29 @@
  *  |                               |          at header.colours one RGBA8 colour per block
  *  +-------------------------------+
  *
- *  interior node (depth d < D - 2, edge 2^(D-d)), 2 + n words:
+ *  interior node (depth d < D - 2, edge 2^(D-d)) with n children, 1 + 2n words
+ *  (2 for an empty root):
  *   word 0   . . . . . . . . . . . . . . . . . . . . . . . .  m m m m m m m m
  *            31                                              8 7             0
  *            child mask: bit o set when octant o = x | y<<1 | z<<2 holds a voxel
  *            (x, y, z: the coordinate bit of the child's edge)
  *   word 1   solid voxels below the node (its share of the depth-first order)
- *   word 2+k pointer to the k-th present child, in octant order
+ *   word 2+k pointer to the k-th present child, in octant order (k < n)
+ *   word 1+n+k  solid voxels below children 0 .. k-1 (k = 1 .. n-1; child 0's is 0)
+ *
+ *            +------+-------+---------+-----+-----------+---------+-----+-------------+
+ *            | mask | count | child 0 | ... | child n-1 | below 1 | ... | below n-1   |
+ *            +------+-------+---------+-----+-----------+---------+-----+-------------+
+ *
+ *  The counts below children (a prefix sum, determined by the children, so shared nodes
+ *  stay shared) make a voxel's depth-first index one load a level instead of a count of
+ *  every sibling before it: the closest hit's attribute lookup.
  *
  *  leaf (depth D - 2, a 4x4x4 brick), 2 words: bit x | y<<2 | z<<4 of a 64-bit mask
  *   word 0   z = 0 (bits 0..15) and z = 1 (bits 16..31); word 1: z = 2 and 3
  *
  *  Depth-first index of a solid voxel: the voxels of the siblings before its octant on
- *  every level (their word 1, or a leaf's popcount), plus the set bits below its own in
+ *  every level (the node's count below that child), plus the set bits below its own in
  *  its leaf. It addresses the attributes, which are decoupled from the geometry: a shared
  *  subtree has one geometry but many colours.
  *
@@ -40,7 +50,7 @@
 #define VOXRAY_LAYOUT_SVDAG_LAYOUT_H
 
 #define VX_SV_MAGIC 0x44535856u /* "VXSD" little endian */
-#define VX_SV_VERSION 1u
+#define VX_SV_VERSION 2u /* 2: counts below each child (v1 had none) */
 
 #define VX_SV_HEADER_MAGIC 0
 #define VX_SV_HEADER_VERSION 1
@@ -66,6 +76,10 @@
 #define VX_SV_LEAF_WORDS 2
 #define VX_SV_NODE_MASK_BITS 0xFFu
 #define VX_SV_NODE_CHILDREN 2        /* word of the first child pointer */
+/* Words of an interior node with n children, and the word (from the node) of the count
+ * below the children before slot k, for 1 <= k < n. */
+#define VX_SV_NODE_WORDS(n) (VX_SV_NODE_CHILDREN + 2 * (n) - ((n) > 0 ? 1 : 0))
+#define VX_SV_NODE_BELOW(n, k) (VX_SV_NODE_CHILDREN + (n) + (k) - 1)
 
 /* Index arithmetic. Macros, so that one definition serves host integers, GPU integers
  * and SIMD lane vectors alike; `one` is 1u in the lane type (a vector shift needs a

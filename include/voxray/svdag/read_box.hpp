@@ -67,14 +67,14 @@ private:
         }
         std::uint32_t mask = w_[node] & VX_SV_NODE_MASK_BITS;
         int half = 1 << (depth_ - 1 - level);
-        bool children_are_leaves = level + 1 == depth_ - VX_SV_LEAF_EDGE_BITS;
+        const std::uint32_t children = std::uint32_t(std::popcount(mask));
         std::uint32_t slot = 0;
         for (int o = 0; o < 8; ++o) {
             if (!(mask >> o & 1u)) continue;
+            std::uint64_t below = slot > 0 ? w_[node + VX_SV_NODE_BELOW(children, slot)] : 0u;
             std::uint32_t child = w_[node + VX_SV_NODE_CHILDREN + slot++];
             glm::ivec3 corner = at + glm::ivec3(o & 1, (o >> 1) & 1, (o >> 2) & 1) * half;
-            if (meets_query(corner, half)) descend(child, level + 1, corner, base);
-            base += children_are_leaves ? std::uint64_t(std::popcount(leaf_mask(child))) : w_[child + 1];
+            if (meets_query(corner, half)) descend(child, level + 1, corner, base + below);
         }
     }
 

@@ -8,8 +8,10 @@
 // two depths is an error), every node and child pointer inside the node region, children
 // strictly after their parent (the builder's root-first, level-by-level order; it also
 // rules out cycles), mask bits above 8 zero, no empty node but an empty root, and every
-// interior count the sum of its children's (computed bottom-up, level by level, without
-// recursion). Last the attributes against the root's count. Time and memory are linear in
+// interior count the sum of its children's and every count below a child the sum of the
+// children's before it (computed bottom-up, level by level, without recursion): the
+// kernel's depth-first index then stays below the root's count. Last the attributes
+// against the root's count. Time and memory are linear in
 // the number of distinct nodes (one hash-map entry each).
 #pragma once
 #include <bit>
@@ -93,10 +95,11 @@ void validate_blob(std::span<const std::uint32_t> w, Bad&& bad) {
             std::uint32_t mask = w[at];
             if (mask & ~VX_SV_NODE_MASK_BITS) bad(at, "node mask ", mask, " has bits above bit 7 (limit ", VX_SV_NODE_MASK_BITS, ")");
             if (mask == 0 && d != 0) bad(at, "node at depth ", d, " has an empty child mask (only the root may be empty)");
-            std::uint64_t end = std::uint64_t(at) + VX_SV_NODE_CHILDREN + std::popcount(mask);
+            const std::uint64_t children = std::uint64_t(std::popcount(mask));
+            std::uint64_t end = std::uint64_t(at) + VX_SV_NODE_WORDS(children);
             if (end > node_end)
                 bad(at, "node of ", end - at, " words ends at word ", end, ", past the node region's end at word ", node_end);
-            for (std::uint64_t slot = at + VX_SV_NODE_CHILDREN; slot < end; ++slot) {
+            for (std::uint64_t slot = at + VX_SV_NODE_CHILDREN; slot < at + VX_SV_NODE_CHILDREN + children; ++slot) {
                 std::uint32_t child = w[slot];
                 if (child <= at || child >= node_end)
                     bad(slot, "child pointer ", child, " of the node at word ", at, " is outside (", at, ", ", node_end,
@@ -120,7 +123,13 @@ void validate_blob(std::span<const std::uint32_t> w, Bad&& bad) {
     for (std::uint32_t d = leaf_depth; d-- > 0;) {
         for (std::uint32_t at : levels[d]) {
             std::uint64_t n = 0;
-            for (int k = 0; k < std::popcount(w[at]); ++k) n += seen[w[at + VX_SV_NODE_CHILDREN + k]].count;
+            const int children = std::popcount(w[at]);
+            for (int k = 0; k < children; ++k) {
+                std::uint64_t below_word = std::uint64_t(at) + VX_SV_NODE_BELOW(children, k);
+                if (k > 0 && w[below_word] != n)
+                    bad(below_word, "count below child ", k, " is ", w[below_word], ", not its earlier siblings' sum ", n);
+                n += seen[w[at + VX_SV_NODE_CHILDREN + k]].count;
+            }
             if (w[at + 1] != n) bad(at + 1, "node count ", w[at + 1], " is not its children's sum ", n);
             seen[at].count = n;
         }

@@ -146,8 +146,8 @@ VX_FN vx_sv_state vx_sv_step(VX_BLOB blob, vx_sv_frame f, vx_sv_state s, vx_mask
 }
 
 /* Depth-first index of the solid voxel at DAG coordinates u in the DAG at `base` (lanes
- * m): the voxels of the siblings before its octant on every level, plus the bits below
- * its own in the leaf. */
+ * m): on every level, the voxels below the siblings before its octant (the node's count
+ * below that child: one load, off the path down), plus the bits below its own in the leaf. */
 VX_FN vx_u32 vx_sv_dfs_index(VX_BLOB blob, int depth, vx_u32 base, vx_u32 ux, vx_u32 uy, vx_u32 uz, vx_mask m) {
     vx_u32 one = vx_u32_splat(1u);
     vx_u32 node = base + VX_SV_HEADER_WORDS;
@@ -156,18 +156,8 @@ VX_FN vx_u32 vx_sv_dfs_index(VX_BLOB blob, int depth, vx_u32 base, vx_u32 ux, vx
         vx_u32 octant = VX_SV_OCTANT(ux, uy, uz, vx_u32_splat(vx_i2u(depth - 1 - d)));
         vx_u32 mask = vx_gather_masked(blob, m, node) & VX_SV_NODE_MASK_BITS;
         vx_u32 slot = vx_popcount(VX_SV_BELOW(mask, octant, one));
-        for (uint k = 0u; k < 7u; ++k) {
-            vx_mask before = m && k < slot;
-            if (!vx_any(before)) break;
-            vx_u32 sibling = base + vx_gather_masked(blob, before, node + VX_SV_NODE_CHILDREN + k);
-            vx_u32 count;
-            if (d == depth - VX_SV_LEAF_EDGE_BITS - 1) /* the children are leaves */
-                count = vx_popcount(vx_gather_masked(blob, before, sibling)) +
-                        vx_popcount(vx_gather_masked(blob, before, sibling + 1u));
-            else
-                count = vx_gather_masked(blob, before, sibling + 1u);
-            index = index + vx_sel(before, count, 0u);
-        }
+        vx_mask after_first = m && slot > 0u;
+        index = index + vx_gather_masked(blob, after_first, node + VX_SV_NODE_BELOW(vx_popcount(mask), slot));
         node = base + vx_gather_masked(blob, m, node + VX_SV_NODE_CHILDREN + slot);
     }
     vx_u32 i = VX_SV_LEAF_BIT(ux, uy, uz);

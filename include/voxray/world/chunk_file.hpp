@@ -80,14 +80,14 @@ inline std::uint64_t checksum(const unsigned char* header, const blob_words& dag
 }
 
 // The most words a chunk's DAG can need for its voxel count: the header, at most
-// min(8^d, voxels) nodes of 2 + 8 words on each interior level d, as many leaves of 2
+// min(8^d, voxels) nodes of up to 17 words on each interior level d, as many leaves of 2
 // words on the leaf level, and 2 words of attributes a voxel (colour blocks' start and
 // colour; exact payloads need a quarter). A size past it is a lie, refused before
 // anything is allocated for it.
 inline std::uint64_t dag_word_limit(int chunk_bits, std::uint64_t voxels) {
     std::uint64_t words = VX_SV_HEADER_WORDS + 2 * voxels, level = 1, nodes = std::max<std::uint64_t>(voxels, 1);
     for (int d = 0; d <= chunk_bits - VX_SV_LEAF_EDGE_BITS; ++d, level *= 8)
-        words += (d < chunk_bits - VX_SV_LEAF_EDGE_BITS ? VX_SV_NODE_CHILDREN + 8 : VX_SV_LEAF_WORDS) * std::min(level, nodes);
+        words += (d < chunk_bits - VX_SV_LEAF_EDGE_BITS ? VX_SV_NODE_WORDS(8) : VX_SV_LEAF_WORDS) * std::min(level, nodes);
     return words;
 }
 
