@@ -29,6 +29,32 @@ TEST(RayHelpers, PrimaryRayIsThePixelOfPrimaryRays) {
     EXPECT_GT(rays[3].direction.y, rays[4 * 7 + 3].direction.y);
 }
 
+// Tiles: every pixel once (edge tiles cut to the picture), 8x8 tiles row-major, Z order
+// inside a tile, and each ray the one of its pixel.
+TEST(RayHelpers, TiledPrimaryRaysVisitEveryPixelOnceInZOrder) {
+    const int w = 19, h = 11;
+    camera c = look_at({-10, 20, -30}, {4, 5, 6}, 40.0f);
+    auto order = pixel_sequence(w, h, pixel_order::tiles);
+    auto rays = primary_rays(c, w, h, pixel_order::tiles);
+    ASSERT_EQ(order.size(), std::size_t(w * h));
+    ASSERT_EQ(rays.size(), order.size());
+    std::vector<int> seen(w * h, 0);
+    for (std::size_t i = 0; i < order.size(); ++i) {
+        ASSERT_TRUE(order[i].x >= 0 && order[i].x < w && order[i].y >= 0 && order[i].y < h) << i;
+        ++seen[order[i].y * w + order[i].x];
+        ray r = primary_ray(c, order[i].x, order[i].y, w, h);
+        EXPECT_EQ(r.direction, rays[i].direction) << i;
+    }
+    for (int n : seen) EXPECT_EQ(n, 1);
+    // The first tile is whole: Z order, 2x2 quads, then 4x4 blocks.
+    std::vector<glm::ivec2> first{order.begin(), order.begin() + 6};
+    EXPECT_EQ(first, (std::vector<glm::ivec2>{{0, 0}, {1, 0}, {0, 1}, {1, 1}, {2, 0}, {3, 0}}));
+    EXPECT_EQ(order[15], glm::ivec2(3, 3));
+    EXPECT_EQ(order[63], glm::ivec2(7, 7));
+    EXPECT_EQ(order[64], glm::ivec2(8, 0));  // the next tile along the row
+    EXPECT_EQ(pixel_sequence(w, h, pixel_order::rows)[20], glm::ivec2(1, 1));
+}
+
 TEST(RayHelpers, LookAtStraightDownStillHasAnUp) {
     camera c = look_at({0, 50, 0}, {0, 0, 0}, 50.0f);  // along the default up (Y)
     auto rays = primary_rays(c, 4, 4);

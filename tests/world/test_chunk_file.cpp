@@ -230,8 +230,8 @@ TEST(chunk_file, wrong_fields_under_a_valid_checksum_are_errors_at_their_offset)
         // A box inside the chunk but smaller than the DAG's voxels would hide some (issue 22, 14).
         {40, max_x - 1, "solid max " + std::to_string(max_x - 1) + " is not the DAG's voxels' " + std::to_string(max_x)},
         {32, min_y + 1, "solid min " + std::to_string(min_y + 1) + " is not the DAG's voxels' " + std::to_string(min_y)},
-        {56, voxels + 1, "does not match the DAG root's count"},
-        {56, 0, "words is outside [24, 77], the most a DAG of 0 voxels in a chunk of 2^5 a side can need", 64},
+        {56, voxels + 1, "does not match the DAG's"},
+        {56, 0, "words is outside [24, 74], the most a DAG of 0 voxels in a chunk of 2^5 a side can need", 64},
         {56, 32 * 32 * 32 + 1, "voxel count 32769 is more than the chunk's 32768 voxels"},
         {80 + 4 * VX_SV_HEADER_ORIGIN, 16, "DAG origin 16 (expected 0)"},
         {80 + 4 * (VX_SV_HEADER_SHIFT + 2), 1, "DAG shift 1 (expected 0)"},
@@ -277,14 +277,13 @@ struct structure_case {
 
 std::vector<structure_case> structure_cases() {
     return {
-        {"pointer past the node region", [](blob_words& w, const dag_map& m) { w[m.root + 2] = m.node_end; }, "child pointer"},
-        {"pointer past the blob", [](blob_words& w, const dag_map& m) { w[m.root + 2] = std::uint32_t(w.size() + 100); }, "outside"},
-        {"back pointer (a cycle)", [](blob_words& w, const dag_map& m) { w[m.first_child + 2] = m.root; }, "child pointer 24 of the node"},
-        {"pointer to itself", [](blob_words& w, const dag_map& m) { w[m.first_child + 2] = m.first_child; }, "is outside"},
-        {"pointer into the header", [](blob_words& w, const dag_map& m) { w[m.root + 2] = 3; }, "child pointer 3"},
+        {"pointer past the node region", [](blob_words& w, const dag_map& m) { w[m.root + VX_SV_NODE_CHILDREN] = m.node_end; }, "child pointer"},
+        {"pointer past the blob", [](blob_words& w, const dag_map& m) { w[m.root + VX_SV_NODE_CHILDREN] = std::uint32_t(w.size() + 100); }, "outside"},
+        {"back pointer (a cycle)", [](blob_words& w, const dag_map& m) { w[m.first_child + VX_SV_NODE_CHILDREN] = m.root; }, "child pointer 24 of the node"},
+        {"pointer to itself", [](blob_words& w, const dag_map& m) { w[m.first_child + VX_SV_NODE_CHILDREN] = m.first_child; }, "is outside"},
+        {"pointer into the header", [](blob_words& w, const dag_map& m) { w[m.root + VX_SV_NODE_CHILDREN] = 3; }, "child pointer 3"},
         {"node at two depths", [](blob_words& w, const dag_map& m) { w[m.last_slot] = m.grandchild; }, "also at depth"},
-        {"wrong root count", [](blob_words& w, const dag_map& m) { w[m.root + 1] += 1; }, "is not its children's sum"},
-        {"wrong inner count", [](blob_words& w, const dag_map& m) { w[m.first_child + 1] -= 1; }, "is not its children's sum"},
+        {"wrong voxel count", [](blob_words& w, const dag_map&) { w[VX_SV_HEADER_VOXELS] += 1; }, "in the header is not the nodes'"},
         {"wrong count below a child", [](blob_words& w, const dag_map& m) { w[m.root_below_last] += 1; }, "not its earlier siblings' sum"},
         {"mask bit 9", [](blob_words& w, const dag_map& m) { w[m.root] |= 1u << 9; }, "has bits above bit 7"},
         {"mask bit 8", [](blob_words& w, const dag_map& m) { w[m.first_child] |= 1u << 8; }, "has bits above bit 7"},
@@ -344,7 +343,7 @@ TEST(svdag_validate, colour_block_damage_is_refused) {
     };
     refused([&](blob_words& w) { w[starts] = 1; }, "first colour block starts at 1");
     refused([&](blob_words& w) { w[starts + 2] = w[starts + 1]; }, "is not above the previous start");
-    refused([&](blob_words& w) { w[starts + n - 1] = w[VX_SV_HEADER_WORDS + 1]; }, "is not below the voxel count");
+    refused([&](blob_words& w) { w[starts + n - 1] = w[VX_SV_HEADER_VOXELS]; }, "is not below the voxel count");
     refused([&](blob_words& w) { w[VX_SV_HEADER_SEARCH_TOP] += 1; }, "search top");
     refused([&](blob_words& w) { w[VX_SV_HEADER_COLOURS] = starts + 1; }, "overlap the");
     refused([&](blob_words& w) { w[VX_SV_HEADER_COLOURS] = std::uint32_t(w.size() - n + 1); }, "past the blob");

@@ -49,7 +49,8 @@ std::string file_name(std::string text) {
 std::vector<ray_set> make_ray_sets(const bench_options& o, const voxel_model& model, traceable& reference,
                                    const std::vector<ray>& file_rays) {
     std::vector<ray_set> sets;
-    auto primary = primary_rays(auto_camera(model.bounds(), model.up_axis, 0), o.width, o.height);
+    auto primary = primary_rays(auto_camera(model.bounds(), model.up_axis, 0), o.width, o.height,
+                                o.pixel_order == "rows" ? pixel_order::rows : pixel_order::tiles);
     std::vector<hit> primary_hits(primary.size());
     reference.closest_hit(primary, primary_hits);
     for (auto& name : split_names(o.ray_sets)) {
@@ -273,6 +274,7 @@ int run_matrix(const bench_options& o) {
                                           {"structure", name}, {"backend", backend},
                                           {"device", engine ? engine->device() : std::string()}, {"ray_set", set.name},
                                           {"width", set.width}, {"height", set.height}, {"rays", set.rays.size()},
+                                          {"pixel_order", set.width ? o.pixel_order : std::string()},
                                           {"runs", o.runs}, {"warmup", o.warmup}};
                     try {
                         if (!engine) fail(error);
@@ -308,6 +310,10 @@ command add_bench(CLI::App& parent) {
     app->add_option("--write-rays", o->write_rays, "write each generated ray set to DIR/SCENE.SET.vxrays");
     app->add_option("--width", o->width, "primary ray columns")->check(CLI::Range(1, 16384))->capture_default_str();
     app->add_option("--height", o->height, "primary ray rows")->check(CLI::Range(1, 16384))->capture_default_str();
+    app->add_option("--pixel-order", o->pixel_order,
+                    "order of the primary rays (and so of the secondary and shadow rays made from them): rows, or "
+                    "8x8 tiles in Z order")
+        ->check(CLI::IsMember({"rows", "tiles"}))->capture_default_str();
     app->add_option("--runs", o->runs, "timed runs (median reported); frames with --edits")->check(CLI::Range(1, 100000))->capture_default_str();
     app->add_option("--warmup", o->warmup, "untimed runs first")->check(CLI::Range(0, 100))->capture_default_str();
     app->add_option("--out,--json", o->out, "results file: a header line, then one JSON line per row");

@@ -11,6 +11,7 @@ struct bench_options {
     std::string structures, backends, ray_sets;  // comma-separated
     std::string out, ray_file, write_rays, edits;
     std::string candidates;  // a scene file's ways to find candidate entities, comma-separated
+    std::string pixel_order = "tiles";  // of the primary rays: rows or tiles (rays/camera.hpp)
     int width = 1920, height = 1080, runs = 5, warmup = 1;
     unsigned threads = 2;
 };

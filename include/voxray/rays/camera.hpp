@@ -3,14 +3,19 @@
 //   voxray::camera cam = voxray::look_at({-40, 60, -40}, {32, 16, 32}, 50.0f);  // eye, target, fov
 //   std::vector<voxray::ray> rays = voxray::primary_rays(cam, 1280, 720);      // row-major, top-left first
 //   voxray::ray r = voxray::primary_ray(cam, x, y, 1280, 720);                  // one pixel
+//   auto tiled = voxray::primary_rays(cam, 1280, 720, voxray::pixel_order::tiles);  // 8x8 tiles, Z order
+//   // tiled[i] is the ray of pixel voxray::pixel_sequence(1280, 720, voxray::pixel_order::tiles)[i]
 //
 // Directions are normalized, so a hit's t is a distance in voxels. auto_camera frames a
 // whole box (the views of `voxray render --view N`).
 #pragma once
+#include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <vector>
 
 #include <glm/geometric.hpp>
+#include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
 #include "voxray/core/box.hpp"
@@ -93,12 +98,41 @@ inline ray primary_ray(const camera& c, int x, int y, int width, int height) {
     return camera_frame(c, width, height).pixel(x, y);
 }
 
-// One ray per pixel through the pixel centre, row-major from the top-left.
-inline std::vector<ray> primary_rays(const camera& c, int width, int height) {
+// The order of a picture's rays. `rows`: row-major from the top-left. `tiles`: 8x8 tiles,
+// row-major, and each tile's pixels in Morton (Z) order, so that the rays a SIMD lane group
+// walks together look at neighbouring cells (tiles at the right and bottom edges keep only
+// their pixels inside the picture).
+enum class pixel_order { rows, tiles };
+inline constexpr int pixel_tile = 8;
+
+// Every pixel once, in `order`.
+inline std::vector<glm::ivec2> pixel_sequence(int width, int height, pixel_order order) {
+    std::vector<glm::ivec2> pixels;
+    pixels.reserve(std::size_t(std::max(width, 0)) * std::size_t(std::max(height, 0)));
+    if (order == pixel_order::rows) {
+        for (int y = 0; y < height; ++y)
+            for (int x = 0; x < width; ++x) pixels.push_back({x, y});
+        return pixels;
+    }
+    for (int ty = 0; ty < height; ty += pixel_tile)
+        for (int tx = 0; tx < width; tx += pixel_tile)
+            for (std::uint32_t i = 0; i < pixel_tile * pixel_tile; ++i) {
+                // Z order: x from the even bits of i, y from the odd ones.
+                glm::ivec2 p(tx, ty);
+                for (int bit = 0; (1 << bit) < pixel_tile; ++bit)
+                    p += glm::ivec2(int(i >> (2 * bit) & 1u), int(i >> (2 * bit + 1) & 1u)) << bit;
+                if (p.x < width && p.y < height) pixels.push_back(p);
+            }
+    return pixels;
+}
+
+// One ray per pixel through the pixel centre, in `order` (row-major from the top-left by
+// default; pixel_sequence says which pixel each ray is).
+inline std::vector<ray> primary_rays(const camera& c, int width, int height, pixel_order order = pixel_order::rows) {
     camera_frame frame(c, width, height);
-    std::vector<ray> rays(std::size_t(width) * height);
-    for (int y = 0; y < height; ++y)
-        for (int x = 0; x < width; ++x) rays[std::size_t(y) * width + x] = frame.pixel(x, y);
+    std::vector<ray> rays;
+    rays.reserve(std::size_t(std::max(width, 0)) * std::size_t(std::max(height, 0)));
+    for (glm::ivec2 p : pixel_sequence(width, height, order)) rays.push_back(frame.pixel(p.x, p.y));
     return rays;
 }
 

@@ -226,6 +226,7 @@ inline built assemble(leaf_scan leaves, const dag_frame& frame, const svdag_opti
     w[VX_SV_HEADER_ROOT] = VX_SV_HEADER_WORDS;
     w[VX_SV_HEADER_NODE_WORDS] = std::uint32_t(node_end - VX_SV_HEADER_WORDS);
     w[VX_SV_HEADER_ATTRIBUTES] = std::uint32_t(node_end);
+    w[VX_SV_HEADER_VOXELS] = std::uint32_t(counts[0][0]);  // the root's
     for (int d = 0; d < leaf_depth; ++d) {
         auto& child_address = address[std::size_t(d) + 1];
         // The children's counts: the level below's, or the leaves' popcounts.
@@ -237,7 +238,6 @@ inline built assemble(leaf_scan leaves, const dag_frame& frame, const svdag_opti
             std::uint64_t at = address[std::size_t(d)][u];
             const unsigned children = unsigned(std::popcount(n.mask));
             w[at] = n.mask;
-            w[at + 1] = std::uint32_t(counts[std::size_t(d)][u]);
             std::uint64_t below = 0;
             for (unsigned o = 0, k = 0; o < 8; ++o) {
                 if (!(n.mask >> o & 1u)) continue;

@@ -5,7 +5,8 @@
  *  blob
  *  +-------------------------------+ word 0
  *  | header (24 words)             |  magic 'VXSD', version, origin xyz (int), extent xyz,
- *  |                               |  shift xyz, depth D, root, attribute kind and offsets
+ *  |                               |  shift xyz, depth D, root, attribute kind and offsets,
+ *  |                               |  solid voxels
  *  +-------------------------------+ VX_SV_HEADER_WORDS
  *  | nodes, root first, then the   |  an octree over the cube [0, 2^D)^3 whose identical
  *  | unique nodes level by level   |  subtrees are stored once (a DAG): a node is shared
@@ -17,23 +18,23 @@
  *  |                               |          at header.colours one RGBA8 colour per block
  *  +-------------------------------+
  *
- *  interior node (depth d < D - 2, edge 2^(D-d)) with n children, 1 + 2n words
- *  (2 for an empty root):
+ *  interior node (depth d < D - 2, edge 2^(D-d)) with n children, 2n words (1 for an
+ *  empty root):
  *   word 0   . . . . . . . . . . . . . . . . . . . . . . . .  m m m m m m m m
  *            31                                              8 7             0
  *            child mask: bit o set when octant o = x | y<<1 | z<<2 holds a voxel
  *            (x, y, z: the coordinate bit of the child's edge)
- *   word 1   solid voxels below the node (its share of the depth-first order)
- *   word 2+k pointer to the k-th present child, in octant order (k < n)
- *   word 1+n+k  solid voxels below children 0 .. k-1 (k = 1 .. n-1; child 0's is 0)
+ *   word 1+k pointer to the k-th present child, in octant order (k < n)
+ *   word n+k solid voxels below children 0 .. k-1, k = 1 .. n-1 (child 0's is 0)
  *
- *            +------+-------+---------+-----+-----------+---------+-----+-------------+
- *            | mask | count | child 0 | ... | child n-1 | below 1 | ... | below n-1   |
- *            +------+-------+---------+-----+-----------+---------+-----+-------------+
+ *            +------+---------+-----+-----------+---------+-----+-----------+
+ *            | mask | child 0 | ... | child n-1 | below 1 | ... | below n-1 |
+ *            +------+---------+-----+-----------+---------+-----+-----------+
  *
- *  The counts below children (a prefix sum, determined by the children, so shared nodes
- *  stay shared) make a voxel's depth-first index one load a level instead of a count of
- *  every sibling before it: the closest hit's attribute lookup.
+ *  The counts below children (a prefix sum, fixed by the children, so shared nodes stay
+ *  shared) make a voxel's depth-first index one load a level, where layout 1 summed the
+ *  counts of every sibling before it; the node's own total is not stored (the header has
+ *  the root's).
  *
  *  leaf (depth D - 2, a 4x4x4 brick), 2 words: bit x | y<<2 | z<<4 of a 64-bit mask
  *   word 0   z = 0 (bits 0..15) and z = 1 (bits 16..31); word 1: z = 2 and 3
@@ -50,7 +51,7 @@
 #define VOXRAY_LAYOUT_SVDAG_LAYOUT_H
 
 #define VX_SV_MAGIC 0x44535856u /* "VXSD" little endian */
-#define VX_SV_VERSION 2u /* 2: counts below each child (v1 had none) */
+#define VX_SV_VERSION 2u /* 2: counts below the children before each; 1: a count a node */
 
 #define VX_SV_HEADER_MAGIC 0
 #define VX_SV_HEADER_VERSION 1
@@ -65,6 +66,7 @@
 #define VX_SV_HEADER_COLOURS 16      /* block colours (colour blocks) */
 #define VX_SV_HEADER_SEARCH_TOP 17   /* largest power of two <= block count (binary search) */
 #define VX_SV_HEADER_NODE_WORDS 18   /* words of the node region */
+#define VX_SV_HEADER_VOXELS 19       /* solid voxels in the DAG */
 #define VX_SV_HEADER_WORDS 24
 
 #define VX_SV_ATTRIBUTES_EXACT 0u
@@ -75,11 +77,11 @@
 #define VX_SV_LEAF_EDGE_BITS 2
 #define VX_SV_LEAF_WORDS 2
 #define VX_SV_NODE_MASK_BITS 0xFFu
-#define VX_SV_NODE_CHILDREN 2        /* word of the first child pointer */
+#define VX_SV_NODE_CHILDREN 1        /* word of the first child pointer */
 /* Words of an interior node with n children, and the word (from the node) of the count
  * below the children before slot k, for 1 <= k < n. */
-#define VX_SV_NODE_WORDS(n) (VX_SV_NODE_CHILDREN + 2 * (n) - ((n) > 0 ? 1 : 0))
-#define VX_SV_NODE_BELOW(n, k) (VX_SV_NODE_CHILDREN + (n) + (k) - 1)
+#define VX_SV_NODE_WORDS(n) ((n) > 0 ? 2 * (n) : 1)
+#define VX_SV_NODE_BELOW(n, k) ((n) + (k))
 
 /* Index arithmetic. Macros, so that one definition serves host integers, GPU integers
  * and SIMD lane vectors alike; `one` is 1u in the lane type (a vector shift needs a

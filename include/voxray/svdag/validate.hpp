@@ -7,11 +7,10 @@
 // then the DAG from the root, level by level: each distinct node once (a node reached at
 // two depths is an error), every node and child pointer inside the node region, children
 // strictly after their parent (the builder's root-first, level-by-level order; it also
-// rules out cycles), mask bits above 8 zero, no empty node but an empty root, and every
-// interior count the sum of its children's and every count below a child the sum of the
-// children's before it (computed bottom-up, level by level, without recursion): the
-// kernel's depth-first index then stays below the root's count. Last the attributes
-// against the root's count. Time and memory are linear in
+// rules out cycles), mask bits above 8 zero, no empty node but an empty root, every count
+// below a child the sum of the voxels of the children before it and the header's voxel
+// count the root's (computed bottom-up, level by level, without recursion): the kernel's
+// depth-first index then stays below it. Last the attributes against that count. Time and memory are linear in
 // the number of distinct nodes (one hash-map entry each).
 #pragma once
 #include <bit>
@@ -88,10 +87,9 @@ void validate_blob(std::span<const std::uint32_t> w, Bad&& bad) {
     seen[VX_SV_HEADER_WORDS] = {0, 0};
     for (std::uint32_t d = 0; d < leaf_depth; ++d) {
         for (std::uint32_t at : levels[d]) {
-            // Its mask and count words first, so that reading the mask stays inside the region.
-            if (std::uint64_t(at) + VX_SV_NODE_CHILDREN > node_end)
-                bad(at, "node ends at word ", std::uint64_t(at) + VX_SV_NODE_CHILDREN, ", past the node region's end at word ",
-                    node_end);
+            // Its mask word first, so that reading the mask stays inside the region.
+            if (std::uint64_t(at) + 1 > node_end)
+                bad(at, "node ends at word ", std::uint64_t(at) + 1, ", past the node region's end at word ", node_end);
             std::uint32_t mask = w[at];
             if (mask & ~VX_SV_NODE_MASK_BITS) bad(at, "node mask ", mask, " has bits above bit 7 (limit ", VX_SV_NODE_MASK_BITS, ")");
             if (mask == 0 && d != 0) bad(at, "node at depth ", d, " has an empty child mask (only the root may be empty)");
@@ -130,15 +128,16 @@ void validate_blob(std::span<const std::uint32_t> w, Bad&& bad) {
                     bad(below_word, "count below child ", k, " is ", w[below_word], ", not its earlier siblings' sum ", n);
                 n += seen[w[at + VX_SV_NODE_CHILDREN + k]].count;
             }
-            if (w[at + 1] != n) bad(at + 1, "node count ", w[at + 1], " is not its children's sum ", n);
             seen[at].count = n;
         }
     }
+    const std::uint64_t voxels = w[VX_SV_HEADER_VOXELS];
+    if (voxels != seen[VX_SV_HEADER_WORDS].count)
+        bad(VX_SV_HEADER_VOXELS, "voxel count ", voxels, " in the header is not the nodes' ", seen[VX_SV_HEADER_WORDS].count);
 
     // Attributes against the voxels.
-    const std::uint64_t voxels = w[VX_SV_HEADER_WORDS + 1];
     if (exact) {
-        if (count != voxels) bad(VX_SV_HEADER_ATTRIBUTE_COUNT, "exact attribute count ", count, " is not the root's voxel count ", voxels);
+        if (count != voxels) bad(VX_SV_HEADER_ATTRIBUTE_COUNT, "exact attribute count ", count, " is not the DAG's voxel count ", voxels);
         return;
     }
     // Every voxel needs a block: none only without voxels, and the first starts at 0.

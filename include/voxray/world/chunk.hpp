@@ -38,7 +38,7 @@ struct chunk_record {
     chunk_key key;
     int chunk_bits = 8;                        // C = 2^chunk_bits; the DAG's depth
     glm::ivec3 solid_min{0}, solid_max{-1};    // inclusive box of solid voxels in the chunk's own voxels [0, C); empty when max < min
-    std::uint64_t voxel_count = 0;             // solid voxels (the DAG root's count)
+    std::uint64_t voxel_count = 0;             // solid voxels (the DAG header's count)
     std::uint32_t source_hash = 0;             // the build's options and input, checked when a build resumes
     blob_words dag;                            // a svdag blob (svdag/layout.h) over the cube [0, C)^3
 

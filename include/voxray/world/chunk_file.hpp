@@ -11,7 +11,7 @@
 //       28    12  solid min x, y, z (signed)    inclusive box of the solid voxels, in [0, C)
 //       40    12  solid max x, y, z (signed)    or empty (max < min on an axis) when no voxels
 //       52     4  source hash                   opaque to the reader (resume compares it)
-//       56     8  solid voxel count             == the DAG root's count
+//       56     8  solid voxel count             == the DAG's (its header's)
 //       64     8  DAG words                     file size must be 80 + 4 * words
 //       72     8  checksum: FNV-1a 64 over bytes 0..71 and every DAG word
 //       80        DAG words (svdag/layout.h)
@@ -80,7 +80,7 @@ inline std::uint64_t checksum(const unsigned char* header, const blob_words& dag
 }
 
 // The most words a chunk's DAG can need for its voxel count: the header, at most
-// min(8^d, voxels) nodes of up to 17 words on each interior level d, as many leaves of 2
+// min(8^d, voxels) nodes of up to 16 words on each interior level d, as many leaves of 2
 // words on the leaf level, and 2 words of attributes a voxel (colour blocks' start and
 // colour; exact payloads need a quarter). A size past it is a lie, refused before
 // anything is allocated for it.
@@ -257,9 +257,9 @@ inline chunk_record read_chunk_file(const std::filesystem::path& path, int expec
         expect(VX_SV_HEADER_EXTENT + a, std::uint64_t(edge), "DAG extent");
     }
     svdag_detail::validate_blob(c.dag, dag_bad);
-    std::uint64_t root_count = c.dag[VX_SV_HEADER_WORDS + 1];
-    if (root_count != c.voxel_count)
-        bad(off::voxel_count, "voxel count ", c.voxel_count, " does not match the DAG root's count ", root_count);
+    std::uint64_t dag_voxels = c.dag[VX_SV_HEADER_VOXELS];  // the validator checked it against the nodes
+    if (dag_voxels != c.voxel_count)
+        bad(off::voxel_count, "voxel count ", c.voxel_count, " does not match the DAG's ", dag_voxels);
     // The solid box is where the walk looks: one smaller than the DAG's voxels hides some.
     if (!empty) {
         glm::ivec3 lo, hi;
