@@ -231,7 +231,8 @@ inline built assemble(leaf_scan leaves, const dag_frame& frame, const svdag_opti
         auto& child_address = address[std::size_t(d) + 1];
         // The children's counts: the level below's, or the leaves' popcounts.
         auto child_count = [&](std::uint32_t child) {
-            return d + 1 < leaf_depth ? counts[std::size_t(d) + 1][child] : std::uint64_t(std::popcount(leaf_masks[child]));
+            return d + 1 < leaf_depth ? counts[std::size_t(d) + 1][child]
+                                      : std::uint64_t(std::popcount(leaf_masks[child]));
         };
         for (std::size_t u = 0; u < nodes[std::size_t(d)].size(); ++u) {
             const interior& n = nodes[std::size_t(d)][u];

@@ -125,7 +125,8 @@ void validate_blob(std::span<const std::uint32_t> w, Bad&& bad) {
             for (int k = 0; k < children; ++k) {
                 std::uint64_t below_word = std::uint64_t(at) + VX_SV_NODE_BELOW(children, k);
                 if (k > 0 && w[below_word] != n)
-                    bad(below_word, "count below child ", k, " is ", w[below_word], ", not its earlier siblings' sum ", n);
+                    bad(below_word, "count below child ", k, " is ", w[below_word], ", not its earlier siblings' sum ",
+                        n);
                 n += seen[w[at + VX_SV_NODE_CHILDREN + k]].count;
             }
             seen[at].count = n;
@@ -133,7 +134,8 @@ void validate_blob(std::span<const std::uint32_t> w, Bad&& bad) {
     }
     const std::uint64_t voxels = w[VX_SV_HEADER_VOXELS];
     if (voxels != seen[VX_SV_HEADER_WORDS].count)
-        bad(VX_SV_HEADER_VOXELS, "voxel count ", voxels, " in the header is not the nodes' ", seen[VX_SV_HEADER_WORDS].count);
+        bad(VX_SV_HEADER_VOXELS, "voxel count ", voxels, " in the header is not the nodes' ",
+            seen[VX_SV_HEADER_WORDS].count);
 
     // Attributes against the voxels.
     if (exact) {
