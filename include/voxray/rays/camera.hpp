@@ -130,9 +130,10 @@ inline std::vector<glm::ivec2> pixel_sequence(int width, int height, pixel_order
 // default; pixel_sequence says which pixel each ray is).
 inline std::vector<ray> primary_rays(const camera& c, int width, int height, pixel_order order = pixel_order::rows) {
     camera_frame frame(c, width, height);
+    const std::vector<glm::ivec2> pixels = pixel_sequence(width, height, order);
     std::vector<ray> rays;
-    rays.reserve(std::size_t(std::max(width, 0)) * std::size_t(std::max(height, 0)));
-    for (glm::ivec2 p : pixel_sequence(width, height, order)) rays.push_back(frame.pixel(p.x, p.y));
+    rays.reserve(pixels.size());
+    for (glm::ivec2 p : pixels) rays.push_back(frame.pixel(p.x, p.y));
     return rays;
 }
 

@@ -10,8 +10,8 @@
 // rules out cycles), mask bits above 8 zero, no empty node but an empty root, every count
 // below a child the sum of the voxels of the children before it and the header's voxel
 // count the root's (computed bottom-up, level by level, without recursion): the kernel's
-// depth-first index then stays below it. Last the attributes against that count. Time and memory are linear in
-// the number of distinct nodes (one hash-map entry each).
+// depth-first index then stays below it. Last the attributes against that count. Time and
+// memory are linear in the number of distinct nodes (one hash-map entry each).
 #pragma once
 #include <bit>
 #include <cstdint>
@@ -97,7 +97,8 @@ void validate_blob(std::span<const std::uint32_t> w, Bad&& bad) {
             std::uint64_t end = std::uint64_t(at) + VX_SV_NODE_WORDS(children);
             if (end > node_end)
                 bad(at, "node of ", end - at, " words ends at word ", end, ", past the node region's end at word ", node_end);
-            for (std::uint64_t slot = at + VX_SV_NODE_CHILDREN; slot < at + VX_SV_NODE_CHILDREN + children; ++slot) {
+            const std::uint64_t first_child = std::uint64_t(at) + VX_SV_NODE_CHILDREN;
+            for (std::uint64_t slot = first_child; slot < first_child + children; ++slot) {
                 std::uint32_t child = w[slot];
                 if (child <= at || child >= node_end)
                     bad(slot, "child pointer ", child, " of the node at word ", at, " is outside (", at, ", ", node_end,
@@ -123,10 +124,9 @@ void validate_blob(std::span<const std::uint32_t> w, Bad&& bad) {
             std::uint64_t n = 0;
             const int children = std::popcount(w[at]);
             for (int k = 0; k < children; ++k) {
-                std::uint64_t below_word = std::uint64_t(at) + VX_SV_NODE_BELOW(children, k);
-                if (k > 0 && w[below_word] != n)
-                    bad(below_word, "count below child ", k, " is ", w[below_word], ", not its earlier siblings' sum ",
-                        n);
+                const std::uint64_t below = std::uint64_t(at) + VX_SV_NODE_BELOW(children, k);
+                if (k > 0 && w[below] != n)
+                    bad(below, "count below child ", k, " is ", w[below], ", not its earlier siblings' sum ", n);
                 n += seen[w[at + VX_SV_NODE_CHILDREN + k]].count;
             }
             seen[at].count = n;
