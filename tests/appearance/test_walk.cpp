@@ -132,6 +132,41 @@ TEST(appearance_walk, every_structure_gives_the_same_pixels) {
     EXPECT_GT(blended, rays.size() / 10);  // rays that blend several voxels, not only first hits
 }
 
+// The ray goes on from a voxel into the next face to face: one visit blends the whole run of
+// touching voxels (a DDA step each, no closest hit), and the ray leaves the run's last voxel.
+// A run that ends at an empty voxel, or where the ray leaves through an edge, re-enters.
+TEST(appearance_walk, one_closest_hit_blends_a_run_of_touching_voxels) {
+    voxel_model model;
+    for (int z = 0; z < 5; ++z) model.set({1, 1, z}, 1);  // a column of 5 voxels
+    model.set({1, 1, 7}, 1);                               // one apart, after an empty gap
+    model.set({2, 1, 7}, 1);                               // beside it, face to face
+    model.set({2, 2, 7}, 1);                               // touching it by an edge only
+    walk_words words(uniform_table(model, 1));             // opacity 1/15: nothing stops the walk
+    namespace k = kernels::scalar;
+    k::vx_app_light light{0.0f, 0.0f, -1.0f, 0.25f};
+    auto visit = [&](k::vx_ray r, k::vx_hit h) {
+        k::vx_app_walk_cursor c = k::vx_app_walk_begin(r, k::vx_app_walk_state_start(), 64u);
+        return k::vx_app_walk_visit(words.index.data(), words.records.data(), words.faces.data(), words.kind, light,
+                                    0.0f, 64u, 0u, h, c);
+    };
+    // Down the column from z = -3: the closest hit is voxel (1, 1, 0) at t = 3.
+    k::vx_ray down{1.5f, 1.5f, -3.0f, 0.0f, 0.0f, 0.0f, 1.0f, 1e30f};
+    k::vx_app_walk_cursor c = visit(down, {3.0f, 1, 1, 0, VX_FACE_NONE, 1u, 2u, VX_STATUS_HIT});
+    EXPECT_EQ(c.s.w.visits, 5u);
+    EXPECT_EQ(glm::ivec3(c.s.px, c.s.py, c.s.pz), glm::ivec3(1, 1, 4));
+    EXPECT_EQ(c.s.w.steps, 2u + 4u);  // the closest hit's steps, then a step a voxel
+    EXPECT_EQ(c.r.tmin, 8.0f);        // the far face of (1, 1, 4): z = 5
+    EXPECT_EQ(c.going, 1u);           // on to the closest hit past the gap
+    EXPECT_NEAR(c.s.w.transmittance, 1.0f - 5.0f / 15.0f, 1e-6f);  // one run: coverages add up
+    // Through (1, 1, 7) towards +x+y, leaving it exactly through the edge it shares with
+    // (2, 2, 7): not through a face, so no step (not even into (2, 1, 7), whose face the ray
+    // only grazes at that edge); the walk re-enters there.
+    k::vx_ray diagonal{1.0f, 1.0f, 7.5f, 0.0f, 0.70710678f, 0.70710678f, 0.0f, 1e30f};
+    c = visit(diagonal, {0.0f, 1, 1, 7, VX_FACE_NONE, 1u, 0u, VX_STATUS_HIT});
+    EXPECT_EQ(c.s.w.visits, 1u);
+    EXPECT_EQ(c.going, 1u);
+}
+
 // Voxels apart along a ray are separate layers: T = (1 - a)^2, C = a c + (1 - a) a c.
 TEST(appearance_walk, voxels_apart_blend_as_independent_layers) {
     voxel_model two;

@@ -54,6 +54,28 @@ VX_APP_FN float vx_app_voxel_exit(vx_ray r, int x, int y, int z) {
                    vx_app_exit_axis(r.oz, r.dz, z));
 }
 
+/* The voxel ray r enters when it leaves voxel (x, y, z), and where: across the far plane it
+ * meets first. tie is 1 when two or three planes are met at once (an edge or a corner): the
+ * next voxel is then not one face away, and the caller does not step. */
+VX_STRUCT(vx_app_next)
+    int x, y, z;
+    float t;
+    uint tie;
+VX_END_STRUCT(vx_app_next)
+
+VX_APP_FN vx_app_next vx_app_next_voxel(vx_ray r, int x, int y, int z) {
+    float tx = vx_app_exit_axis(r.ox, r.dx, x), ty = vx_app_exit_axis(r.oy, r.dy, y);
+    float tz = vx_app_exit_axis(r.oz, r.dz, z);
+    vx_app_next n;
+    n.x = x, n.y = y, n.z = z;
+    n.t = vx_fmin(vx_fmin(tx, ty), tz);
+    n.tie = (tx == n.t ? 1u : 0u) + (ty == n.t ? 1u : 0u) + (tz == n.t ? 1u : 0u) > 1u ? 1u : 0u;
+    if (tx == n.t) n.x = x + (r.dx > 0.0f ? 1 : -1);
+    else if (ty == n.t) n.y = y + (r.dy > 0.0f ? 1 : -1);
+    else n.z = z + (r.dz > 0.0f ? 1 : -1);
+    return n;
+}
+
 /* Row `row` of a table of `kind` records, along unit direction (dx, dy, dz). */
 VX_APP_FN vx_app_sample vx_app_record_sample(VX_BLOB records, VX_BLOB faces, uint kind, uint row, float dx, float dy,
                                              float dz, vx_app_light light) {

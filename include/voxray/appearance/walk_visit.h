@@ -1,7 +1,9 @@
-/* One voxel of the compositing walk (walk.inc), written once for every structure and every
+/* One visit of the compositing walk (walk.inc), written once for every structure and every
  * way of driving the walk: a cursor holds a walk under way, and vx_app_walk_visit takes the
- * closest hit of the cursor's ray, blends that voxel's record into the cursor's state and
- * moves the ray on past it. The walk is
+ * closest hit of the cursor's ray, blends that voxel's record into the cursor's state (and
+ * the records of the voxels the ray goes on into face to face: a DDA step each, where a
+ * re-entry into the structure would cost a closest hit) and moves the ray on past them. The
+ * walk is
  *
  *     c = vx_app_walk_begin(r, s, max_visits);
  *     while (c.going != 0u) c = vx_app_walk_visit(..., closest_hit(c.r), c);
@@ -12,7 +14,7 @@
  * Users' shaders can drive it with their own trace too. Needs walk_types.h. Included once
  * per lane set; no include guard.
  *
- * Unlike the records' functions, these two are not `precise` in GLSL: glslang's precise
+ * Unlike the records' functions, these are not `precise` in GLSL: glslang's precise
  * propagation through a cursor (a struct in a struct, assigned field by field) grows without
  * bound (over 20 GB for one module). Their own sums and products go through
  * vx_app_add_product, which is, so no compiler fuses them and every backend rounds alike. */
@@ -36,8 +38,40 @@ VX_FN vx_app_walk_cursor vx_app_walk_begin(vx_ray r, vx_app_walk_state s, uint m
     return c;
 }
 
+/* Blends voxel (x, y, z), row `row` of the table, into the cursor's state (see vx_app_walk_visit). */
+VX_FN vx_app_walk_cursor vx_app_walk_blend(VX_BLOB records, VX_BLOB faces, uint kind, vx_app_light light,
+                                           uint shadows_at, uint row, int x, int y, int z, vx_app_walk_cursor c) {
+    vx_app_light lit = light;
+    if (shadows_at != 0u) {
+        uint code = (vx_load(records, shadows_at + (row >> 2u)) >> ((row & 3u) * 8u)) & 255u;
+        float visibility = vx_u2f(code) * (1.0f / 255.0f);
+        lit.lx = light.lx * visibility, lit.ly = light.ly * visibility, lit.lz = light.lz * visibility;
+    }
+    vx_app_sample seen = vx_app_record_sample(records, faces, kind, row, c.r.dx, c.r.dy, c.r.dz, lit);
+    /* A run of touching voxels is one surface crossing: their coverages add up (a line
+     * crosses a sheet once); separate runs blend as independent layers. Faithful records
+     * keep the paper's rule: every voxel is a layer of its own. */
+    int gx = x - c.s.px, gy = y - c.s.py, gz = z - c.s.pz;
+    bool apart = gx < -1 || gx > 1 || gy < -1 || gy > 1 || gz < -1 || gz > 1;
+    if (c.s.w.visits == 0u || apart || kind == VX_APP_KIND_FAITHFUL)
+        c.s.run_t = c.s.w.transmittance, c.s.run_covered = 0.0f;
+    float a = vx_fmin(seen.a, 1.0f - c.s.run_covered);
+    c.s.w.r = vx_app_add_product(c.s.w.r, c.s.run_t, a, seen.r);
+    c.s.w.g = vx_app_add_product(c.s.w.g, c.s.run_t, a, seen.g);
+    c.s.w.b = vx_app_add_product(c.s.w.b, c.s.run_t, a, seen.b);
+    c.s.w.nx = vx_app_add_product(c.s.w.nx, c.s.run_t, a, seen.nx);
+    c.s.w.ny = vx_app_add_product(c.s.w.ny, c.s.run_t, a, seen.ny);
+    c.s.w.nz = vx_app_add_product(c.s.w.nz, c.s.run_t, a, seen.nz);
+    c.s.run_covered = c.s.run_covered + a;
+    c.s.w.transmittance = c.s.run_t * (1.0f - c.s.run_covered);
+    c.s.w.visits = c.s.w.visits + 1u;
+    c.s.px = x, c.s.py = y, c.s.pz = z;
+    return c;
+}
+
 /* The walk after the closest hit `h` of c.r: the voxel blended, C += T a c, T *= 1 - a,
- * and the ray moved past it; it stops (going 0) when the ray left the structure, T fell
+ * then each voxel with a record that the ray goes on into face to face, and the ray moved
+ * past the last of them; it stops (going 0) when the ray left the structure, T fell
  * below `cutoff`, a voxel has no record, or the visits or closest hits ran out.
  * Precomputed shadows (appearance/shadows.hpp): where `shadows_at` is not 0, `records`
  * holds a visibility byte a row from that word on (four a word, row 0 in the low byte), and
@@ -70,33 +104,23 @@ VX_FN vx_app_walk_cursor vx_app_walk_visit(VX_BLOB index, VX_BLOB records, VX_BL
         c.s.w.t = h.t, c.s.w.x = h.x, c.s.w.y = h.y, c.s.w.z = h.z, c.s.w.face = h.face, c.s.w.material = h.material;
         c.s.w.status = VX_STATUS_HIT;
     }
-    vx_app_light lit = light;
-    if (shadows_at != 0u) {
-        uint code = (vx_load(records, shadows_at + (row >> 2u)) >> ((row & 3u) * 8u)) & 255u;
-        float visibility = vx_u2f(code) * (1.0f / 255.0f);
-        lit.lx = light.lx * visibility, lit.ly = light.ly * visibility, lit.lz = light.lz * visibility;
+    /* Blend voxel h and then, while the ray goes straight on into a touching voxel that has
+     * a record (a surface's voxels mostly touch), that one too: one DDA step and a lookup,
+     * not a re-entry. Ties (the ray leaves through an edge or corner) re-enter, as before. */
+    int x = h.x, y = h.y, z = h.z;
+    for (;;) {
+        c = vx_app_walk_blend(records, faces, kind, light, shadows_at, row, x, y, z, c);
+        if (c.s.w.transmittance < cutoff) {
+            c.going = 0u;
+            return c;
+        }
+        vx_app_next next = vx_app_next_voxel(c.r, x, y, z);
+        c.r.tmin = next.t;
+        c.going = c.s.w.visits < max_visits && more_tries ? 1u : 0u;
+        if (c.going == 0u || next.tie != 0u || !(next.t < c.r.tmax)) return c;
+        row = vx_app_row(index, next.x, next.y, next.z);
+        if (row == VX_APP_NO_ROW) return c;
+        c.s.w.steps = c.s.w.steps + 1u;
+        x = next.x, y = next.y, z = next.z;
     }
-    vx_app_sample seen = vx_app_record_sample(records, faces, kind, row, c.r.dx, c.r.dy, c.r.dz, lit);
-    /* A run of touching voxels is one surface crossing: their coverages add up (a line
-     * crosses a sheet once); separate runs blend as independent layers. Faithful records
-     * keep the paper's rule: every voxel is a layer of its own. */
-    int gx = h.x - c.s.px, gy = h.y - c.s.py, gz = h.z - c.s.pz;
-    bool apart = gx < -1 || gx > 1 || gy < -1 || gy > 1 || gz < -1 || gz > 1;
-    if (c.s.w.visits == 0u || apart || kind == VX_APP_KIND_FAITHFUL)
-        c.s.run_t = c.s.w.transmittance, c.s.run_covered = 0.0f;
-    float a = vx_fmin(seen.a, 1.0f - c.s.run_covered);
-    c.s.w.r = vx_app_add_product(c.s.w.r, c.s.run_t, a, seen.r);
-    c.s.w.g = vx_app_add_product(c.s.w.g, c.s.run_t, a, seen.g);
-    c.s.w.b = vx_app_add_product(c.s.w.b, c.s.run_t, a, seen.b);
-    c.s.w.nx = vx_app_add_product(c.s.w.nx, c.s.run_t, a, seen.nx);
-    c.s.w.ny = vx_app_add_product(c.s.w.ny, c.s.run_t, a, seen.ny);
-    c.s.w.nz = vx_app_add_product(c.s.w.nz, c.s.run_t, a, seen.nz);
-    c.s.run_covered = c.s.run_covered + a;
-    c.s.w.transmittance = c.s.run_t * (1.0f - c.s.run_covered);
-    c.s.w.visits = c.s.w.visits + 1u;
-    c.s.px = h.x, c.s.py = h.y, c.s.pz = h.z;
-    if (c.s.w.transmittance < cutoff) return c;
-    c.r.tmin = exit_t;
-    c.going = c.s.w.visits < max_visits && more_tries ? 1u : 0u;
-    return c;
 }
