@@ -34,6 +34,12 @@ VX_FN vx_sv_state vx_svdag_begin(vx_svdag g, vx_ray r) {
     return vx_sv_enter(s, vx_u32_splat(0u), vx_u32_splat(0u), every_lane);
 }
 
+/* Lanes m restarted with new rays (walk s, just begun) after walk `old` ended: the CPU
+ * stream's refill starts each at the deepest node old's path shares with it. */
+VX_FN vx_sv_state vx_svdag_resume(vx_svdag g, vx_sv_state old, vx_sv_state s, vx_mask m) {
+    return vx_sv_resume(g.f, old, s, m);
+}
+
 VX_FN vx_sv_state vx_svdag_step(VX_BLOB blob, vx_svdag g, vx_sv_state s) {
     return vx_sv_step(blob, g.f, s, s.w.status == VX_STATUS_ACTIVE);
 }

@@ -72,6 +72,26 @@ VX_FN vx_sv_state vx_sv_enter(vx_sv_state s, vx_u32 base, vx_u32 lod, vx_mask m)
     return s;
 }
 
+/* Lanes m, whose walk `old` has ended, start the walk `s` of a new ray (begun and entered at
+ * the root of the same DAG) at the deepest node on old's path that holds the new ray's
+ * first voxel, rather than at the root: the pop rule of vx_sv_step, applied to the jump
+ * from old's voxel to the new one. Rays from one camera, or from neighbouring pixels'
+ * surfaces, share most of the descent. The walk meets the same voxels either way. */
+VX_FN vx_sv_state vx_sv_resume(vx_sv_frame f, vx_sv_state old, vx_sv_state s, vx_mask m) {
+    vx_u32 moved = ((vx_i2u(s.w.cx + f.shx) >> s.lod) ^ (vx_i2u(old.w.cx + f.shx) >> old.lod)) |
+                   ((vx_i2u(s.w.cy + f.shy) >> s.lod) ^ (vx_i2u(old.w.cy + f.shy) >> old.lod)) |
+                   ((vx_i2u(s.w.cz + f.shz) >> s.lod) ^ (vx_i2u(old.w.cz + f.shz) >> old.lod));
+    vx_i32 keep = f.depth - vx_bit_length(moved);
+    vx_i32 level = vx_sel(keep < old.level, keep, old.level);
+    vx_mask reuse = m && s.w.status == VX_STATUS_ACTIVE && s.level == 0 && old.base == s.base && old.lod == s.lod &&
+                    level > 0;
+    if (!vx_any(reuse)) return s;
+    s.level = vx_sel(reuse, level, s.level);
+    s.node = vx_sel(reuse, vx_stack_load(VX_ADDR(old.path), vx_sel(reuse, level, 0)), s.node);
+    for (int d = 1; d < VX_STACK_DEPTH; ++d) s.path.slot[d] = vx_sel(reuse, old.path.slot[d], s.path.slot[d]);
+    return s;
+}
+
 /* Lanes m leave the empty box [lo, hi) (walk voxels) in one move; leaving the frame's
  * extent is a miss. */
 VX_FN vx_sv_state vx_sv_leave(vx_sv_frame f, vx_sv_state s, vx_i32 lox, vx_i32 loy, vx_i32 loz, vx_i32 hix,
@@ -145,26 +165,49 @@ VX_FN vx_sv_state vx_sv_step(VX_BLOB blob, vx_sv_frame f, vx_sv_state s, vx_mask
     return s;
 }
 
+/* The solid voxels below the children of `node` (lanes m) before the one of octant o. */
+VX_FN vx_u32 vx_sv_below_octant(VX_BLOB blob, vx_u32 node, vx_u32 octant, vx_mask m) {
+    vx_u32 mask = vx_gather_masked(blob, m, node) & VX_SV_NODE_MASK_BITS;
+    vx_u32 slot = vx_popcount(VX_SV_BELOW(mask, octant, vx_u32_splat(1u)));
+    return vx_gather_masked(blob, m && slot > 0u, node + VX_SV_NODE_BELOW(vx_popcount(mask), slot));
+}
+
+/* The solid voxels of `leaf` (lanes m) before the one at DAG coordinates u. */
+VX_FN vx_u32 vx_sv_below_in_leaf(VX_BLOB blob, vx_u32 leaf, vx_u32 ux, vx_u32 uy, vx_u32 uz, vx_mask m) {
+    vx_u32 one = vx_u32_splat(1u);
+    vx_u32 i = VX_SV_LEAF_BIT(ux, uy, uz);
+    vx_u32 low = vx_gather_masked(blob, m, leaf);
+    vx_u32 high = vx_gather_masked(blob, m, leaf + 1u);
+    vx_u32 below_bits = (one << VX_SV_LEAF_SHIFT(i)) - 1u;
+    return vx_sel(i < 32u, vx_popcount(low & below_bits), vx_popcount(low) + vx_popcount(high & below_bits));
+}
+
 /* Depth-first index of the solid voxel at DAG coordinates u in the DAG at `base` (lanes
- * m): on every level, the voxels below the siblings before its octant (the node's count
- * below that child: one load, off the path down), plus the bits below its own in the leaf. */
+ * m), from the root down: on every level, the voxels below the siblings before its octant
+ * (the node's count below that child: one load, off the path down), plus the bits below its
+ * own in the leaf. */
 VX_FN vx_u32 vx_sv_dfs_index(VX_BLOB blob, int depth, vx_u32 base, vx_u32 ux, vx_u32 uy, vx_u32 uz, vx_mask m) {
     vx_u32 one = vx_u32_splat(1u);
     vx_u32 node = base + VX_SV_HEADER_WORDS;
     vx_u32 index = vx_u32_splat(0u);
     for (int d = 0; d < depth - VX_SV_LEAF_EDGE_BITS; ++d) {
         vx_u32 octant = VX_SV_OCTANT(ux, uy, uz, vx_u32_splat(vx_i2u(depth - 1 - d)));
+        index = index + vx_sv_below_octant(blob, node, octant, m);
         vx_u32 mask = vx_gather_masked(blob, m, node) & VX_SV_NODE_MASK_BITS;
-        vx_u32 slot = vx_popcount(VX_SV_BELOW(mask, octant, one));
-        vx_mask after_first = m && slot > 0u;
-        index = index + vx_gather_masked(blob, after_first, node + VX_SV_NODE_BELOW(vx_popcount(mask), slot));
-        node = base + vx_gather_masked(blob, m, node + VX_SV_NODE_CHILDREN + slot);
+        node = base + vx_gather_masked(blob, m, node + VX_SV_NODE_CHILDREN + vx_popcount(VX_SV_BELOW(mask, octant, one)));
     }
-    vx_u32 i = VX_SV_LEAF_BIT(ux, uy, uz);
-    vx_u32 low = vx_gather_masked(blob, m, node);
-    vx_u32 high = vx_gather_masked(blob, m, node + 1u);
-    vx_u32 below_bits = (one << VX_SV_LEAF_SHIFT(i)) - 1u;
-    return index + vx_sel(i < 32u, vx_popcount(low & below_bits), vx_popcount(low) + vx_popcount(high & below_bits));
+    return index + vx_sv_below_in_leaf(blob, node, ux, uy, uz, m);
+}
+
+/* The same for the voxel walk s hit (lanes m, at a leaf), from the nodes on its path: no
+ * level's loads wait for the level above. */
+VX_FN vx_u32 vx_sv_hit_index(VX_BLOB blob, int depth, vx_sv_state s, vx_u32 ux, vx_u32 uy, vx_u32 uz, vx_mask m) {
+    vx_u32 index = vx_u32_splat(0u);
+    for (int d = 0; d < depth - VX_SV_LEAF_EDGE_BITS; ++d) {
+        vx_u32 octant = VX_SV_OCTANT(ux, uy, uz, vx_u32_splat(vx_i2u(depth - 1 - d)));
+        index = index + vx_sv_below_octant(blob, s.path.slot[d], octant, m);
+    }
+    return index + vx_sv_below_in_leaf(blob, s.node, ux, uy, uz, m);
 }
 
 /* The attribute of depth-first index `index` in the DAG at `base`: its payload byte
@@ -192,6 +235,6 @@ VX_FN vx_u32 vx_sv_attribute(VX_BLOB blob, uint kind, vx_u32 base, vx_u32 index,
 VX_FN vx_u32 vx_sv_material(VX_BLOB blob, vx_sv_frame f, uint kind, vx_sv_state s, vx_mask m) {
     vx_u32 ux = vx_i2u(s.w.cx + f.shx) >> s.lod, uy = vx_i2u(s.w.cy + f.shy) >> s.lod,
            uz = vx_i2u(s.w.cz + f.shz) >> s.lod;
-    vx_u32 index = vx_sv_dfs_index(blob, f.depth, s.base, ux, uy, uz, m);
+    vx_u32 index = vx_sv_hit_index(blob, f.depth, s, ux, uy, uz, m);
     return vx_sel(m, vx_sv_attribute(blob, kind, s.base, index, m), 0u);
 }

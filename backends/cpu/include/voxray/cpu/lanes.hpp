@@ -157,6 +157,16 @@ VOXRAY_AVX512_END
         __attribute__((always_inline)) static state begin(const header& g, const vx_ray& r) {                   \
             return vx_##s##_begin(g, r);                                                                         \
         }                                                                                                        \
+        /* Lanes m's state for new rays r after `old` ended: begin, then vx_<s>_resume where the   \
+           kernel has one (it starts the new walks from what the old ones found). */             \
+        template <class Header>                                                                                  \
+        __attribute__((always_inline)) static state restart(const Header& g, const vx_ray& r, const state& old, \
+                                                            vx_mask m) {                                         \
+            if constexpr (requires { vx_##s##_resume(g, old, old, m); })                                         \
+                return vx_##s##_resume(g, old, vx_##s##_begin(g, r), m);                                         \
+            else                                                                                                 \
+                return vx_##s##_begin(g, r);                                                                     \
+        }                                                                                                        \
         __attribute__((always_inline)) static state step(const std::uint32_t* b, const header& g,               \
                                                          const state& st) {                                      \
             return vx_##s##_step(b, g, st);                                                                      \
