@@ -193,8 +193,9 @@ VX_FN vx_u32 vx_sv_dfs_index(VX_BLOB blob, int depth, vx_u32 base, vx_u32 ux, vx
     for (int d = 0; d < depth - VX_SV_LEAF_EDGE_BITS; ++d) {
         vx_u32 octant = VX_SV_OCTANT(ux, uy, uz, vx_u32_splat(vx_i2u(depth - 1 - d)));
         index = index + vx_sv_below_octant(blob, node, octant, m);
-        vx_u32 mask = vx_gather_masked(blob, m, node) & VX_SV_NODE_MASK_BITS;
-        node = base + vx_gather_masked(blob, m, node + VX_SV_NODE_CHILDREN + vx_popcount(VX_SV_BELOW(mask, octant, one)));
+        vx_u32 mask = vx_gather_masked(blob, m, node) & VX_SV_NODE_MASK_BITS; /* a cached reload */
+        vx_u32 slot = vx_popcount(VX_SV_BELOW(mask, octant, one));
+        node = base + vx_gather_masked(blob, m, node + VX_SV_NODE_CHILDREN + slot);
     }
     return index + vx_sv_below_in_leaf(blob, node, ux, uy, uz, m);
 }

@@ -145,8 +145,9 @@ VOXRAY_AVX512_END
 
 // The kernel_lanes specialization of structure kernel `s` in the current lane
 // namespace: the functions every kernel names vx_<s>_load/begin/step/finish/status/trace
-// (types come from their signatures), and vx_<s>_resume where a kernel has one. `mode` arguments are VX_MODE_* constants at every
-// call site, so each mode compiles to its own code (any-hit skips what it need not read).
+// (types come from their signatures), and vx_<s>_resume where a kernel has one. `mode`
+// arguments are VX_MODE_* constants at every call site, so each mode compiles to its own
+// code (any-hit skips what it need not read).
 #define VOXRAY_KERNEL_LANES(s) VOXRAY_KERNEL_LANES_(s)
 #define VOXRAY_KERNEL_LANES_(s)                                                                                  \
     template <>                                                                                                  \
