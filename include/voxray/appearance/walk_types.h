@@ -45,18 +45,15 @@ VX_APP_FN vx_app_walk_state vx_app_walk_state_start(void) {
     return s;
 }
 
-/* t at which ray r leaves voxel (x, y, z): the nearest far plane of the moving axes. */
+/* t at which a ray along one axis (origin o, direction d) leaves cell c: its far plane. */
 VX_APP_FN float vx_app_exit_axis(float o, float d, int c) {
     return d > 0.0f ? (vx_i2f(c + 1) - o) / d : (d < 0.0f ? (vx_i2f(c) - o) / d : VX_INF);
 }
-VX_APP_FN float vx_app_voxel_exit(vx_ray r, int x, int y, int z) {
-    return vx_fmin(vx_fmin(vx_app_exit_axis(r.ox, r.dx, x), vx_app_exit_axis(r.oy, r.dy, y)),
-                   vx_app_exit_axis(r.oz, r.dz, z));
-}
 
-/* The voxel ray r enters when it leaves voxel (x, y, z), and where: across the far plane it
- * meets first. tie is 1 when two or three planes are met at once (an edge or a corner): the
- * next voxel is then not one face away, and the caller does not step. */
+/* The voxel ray r enters when it leaves voxel (x, y, z), across the far plane it meets
+ * first, and where: t, the nearest far plane of the moving axes. tie is 1 when two or three
+ * planes are met at once (an edge or a corner): the next voxel is then not one face away,
+ * and the caller does not step. */
 VX_STRUCT(vx_app_next)
     int x, y, z;
     float t;

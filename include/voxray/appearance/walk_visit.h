@@ -83,11 +83,11 @@ VX_FN vx_app_walk_cursor vx_app_walk_visit(VX_BLOB index, VX_BLOB records, VX_BL
     c.tries = c.tries + 1u;
     c.going = 0u;
     if (h.status != VX_STATUS_HIT) return c;
-    float exit_t = vx_app_voxel_exit(c.r, h.x, h.y, h.z);
     bool more_tries = c.tries < 4u * max_visits;
     if (c.s.w.visits > 0u && h.x == c.s.px && h.y == c.s.py && h.z == c.s.pz) {
         /* The re-entry landed in the voxel just left: at its far face the entry point's
          * rounding can keep a slow axis on this side. Step on, further each time. */
+        float exit_t = vx_app_next_voxel(c.r, h.x, h.y, h.z).t;
         c.r.tmin = vx_app_add_product(vx_fmax(c.r.tmin, exit_t), vx_fmax(exit_t, 1.0f), c.nudge, 1.0f);
         c.nudge = c.nudge * 4.0f;
         c.going = more_tries ? 1u : 0u;
