@@ -182,7 +182,7 @@ TEST(appearance_records, the_face_quadrature_against_a_sample_mean) {
             lit += facing * (ambient + (1 - ambient) * std::max(glm::dot(glm::dvec3(smp.normal), to_light), 0.0));
         }
         kernels::scalar::vx_app_light light{float(to_light.x), float(to_light.y), float(to_light.z), ambient};
-        auto got = kernels::scalar::vx_app_compact_sample(head.data(), r.faces.data(), float(view.x), float(view.y),
+        auto got = kernels::scalar::vx_app_compact_sample(head.data(), r.faces.data(), 0u, float(view.x), float(view.y),
                                                           float(view.z), light);
         double want = lit / area * srgb_cubic(srgb_code(0.6));
         worst = std::max(worst, std::fabs(double(got.r) - want));

@@ -102,7 +102,7 @@ TEST(appearance_walk, faint_records_blend_every_voxel_on_the_ray_once) {
     EXPECT_GE(equal, int(rays.size()) - 5) << "rays whose voxels were each blended once";
     // Down the column every voxel has the same colour c, and each adds a c in full: 8 a c.
     kernels::scalar::vx_app_light light{0.0f, 0.0f, -1.0f, 0.25f};
-    auto one = kernels::scalar::vx_app_compact_sample(table.words.data(), table.faces.data(), 0, 0, 1, light);
+    auto one = kernels::scalar::vx_app_compact_sample(table.words.data(), table.faces.data(), 0u, 0, 0, 1, light);
     appearance_light down{.to_light = {0, 0, -1}, .ambient = 0.25f, .cutoff = 0.0f};
     std::vector<appearance_pixel> column = walker.walk(std::span(rays).last(1), down);
     EXPECT_NEAR(column[0].r, 8.0f * a * one.r, 1e-6f);
@@ -179,7 +179,7 @@ TEST(appearance_walk, voxels_apart_blend_as_independent_layers) {
     appearance_light down{.to_light = {0, 0, -1}, .ambient = 0.25f, .cutoff = 0.0f};
     appearance_pixel p = walker.walk(column, down)[0];
     kernels::scalar::vx_app_light light{0.0f, 0.0f, -1.0f, 0.25f};
-    auto one = kernels::scalar::vx_app_compact_sample(table.words.data(), table.faces.data(), 0, 0, 1, light);
+    auto one = kernels::scalar::vx_app_compact_sample(table.words.data(), table.faces.data(), 0u, 0, 0, 1, light);
     EXPECT_EQ(p.visits, 2u);
     EXPECT_NEAR(p.transmittance, (1 - one.a) * (1 - one.a), 1e-6f);
     EXPECT_NEAR(p.r, one.a * one.r + (1 - one.a) * one.a * one.r, 1e-6f);

@@ -83,5 +83,5 @@ VX_APP_FN vx_app_sample vx_app_record_sample(VX_BLOB records, VX_BLOB faces, uin
         return vx_app_faithful_sample(vx_blob_at(records, row * VX_APP_FAITHFUL_WORDS), dx, dy, dz, light);
     if (kind == VX_APP_KIND_SGGX)
         return vx_app_sggx_sample(vx_blob_at(records, row * VX_APP_SGGX_WORDS), dx, dy, dz, light);
-    return vx_app_compact_sample(vx_blob_at(records, row * VX_APP_COMPACT_WORDS), faces, dx, dy, dz, light);
+    return vx_app_compact_sample(records, faces, row, dx, dy, dz, light);
 }

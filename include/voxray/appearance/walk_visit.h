@@ -8,11 +8,17 @@
  *     c = vx_app_walk_begin(r, s, max_visits);
  *     while (c.going != 0u) c = vx_app_walk_visit(..., closest_hit(c.r), c);
  *
- * which walk.inc writes as one loop per ray (GPUs, the CPU's scalar lanes) and the CPU's
- * SIMD walk (cpu/appearance_walk.hpp) runs as rounds: the closest hits of every live
- * cursor's ray on SIMD lanes, then a visit each. Both give the same state bit for bit.
- * Users' shaders can drive it with their own trace too. Needs walk_types.h. Included once
- * per lane set; no include guard.
+ * which walk.inc writes as one loop per ray (GPUs, the CPU's scalar lanes). A visit is
+ *
+ *     c = vx_app_walk_enter(index, max_visits, h, c);   (c.row: the voxel to blend, if any)
+ *     while (c.row != VX_APP_NO_ROW)
+ *         c = vx_app_walk_take(index, kind, cutoff, max_visits, vx_app_walk_sample(..., c), c);
+ *
+ * and the CPU's SIMD walk (cpu/appearance_walk.hpp) runs its parts as rounds: the closest
+ * hits of every walking cursor's ray on SIMD lanes, then each one's enter, then, while any
+ * cursor has a voxel to blend, their records' samples on SIMD lanes and a take each. All
+ * give the same state bit for bit. Users' shaders can drive it with their own trace too.
+ * Needs walk_types.h. Included once per lane set; no include guard.
  *
  * Unlike the records' functions, these are not `precise` in GLSL: glslang's precise
  * propagation through a cursor (a struct in a struct, assigned field by field) grows without
@@ -27,7 +33,9 @@ VX_STRUCT(vx_app_walk_cursor)
     vx_ray r;     /* the ray; its tmin moves past each voxel walked */
     float nudge;  /* how far on a re-entry that landed in the voxel just left steps next */
     uint tries;   /* closest hits taken */
-    uint going;   /* 1 while the walk wants the closest hit along r */
+    uint going;   /* 1 while the walk wants the closest hit along r (or has a voxel to blend) */
+    uint row;     /* the record of the voxel to blend next, VX_APP_NO_ROW when none */
+    int x, y, z;  /* that voxel */
 VX_END_STRUCT(vx_app_walk_cursor)
 
 /* A walk of at most `max_visits` voxels and 4 max_visits closest hits along r, going on from s. */
@@ -35,19 +43,33 @@ VX_FN vx_app_walk_cursor vx_app_walk_begin(vx_ray r, vx_app_walk_state s, uint m
     vx_app_walk_cursor c;
     c.s = s, c.r = r, c.nudge = 1.0e-6f, c.tries = 0u;
     c.going = s.w.visits < max_visits ? 1u : 0u;
+    c.row = VX_APP_NO_ROW, c.x = 0, c.y = 0, c.z = 0;
     return c;
 }
 
-/* Blends voxel (x, y, z), row `row` of the table, into the cursor's state (see vx_app_walk_visit). */
-VX_FN vx_app_walk_cursor vx_app_walk_blend(VX_BLOB records, VX_BLOB faces, uint kind, vx_app_light light,
-                                           uint shadows_at, uint row, int x, int y, int z, vx_app_walk_cursor c) {
+/* The light that reaches row `row`: precomputed shadows (appearance/shadows.hpp), where
+ * `shadows_at` is not 0, are a visibility byte a row in `records` from that word on (four a
+ * word, row 0 in the low byte), which scales the light. */
+VX_FN vx_app_light vx_app_walk_light(VX_BLOB records, vx_app_light light, uint shadows_at, uint row) {
     vx_app_light lit = light;
     if (shadows_at != 0u) {
         uint code = (vx_load(records, shadows_at + (row >> 2u)) >> ((row & 3u) * 8u)) & 255u;
         float visibility = vx_u2f(code) * (1.0f / 255.0f);
         lit.lx = light.lx * visibility, lit.ly = light.ly * visibility, lit.lz = light.lz * visibility;
     }
-    vx_app_sample seen = vx_app_record_sample(records, faces, kind, row, c.r.dx, c.r.dy, c.r.dz, lit);
+    return lit;
+}
+
+/* What the voxel the cursor is to blend next (c.row) shows along its ray. */
+VX_FN vx_app_sample vx_app_walk_sample(VX_BLOB records, VX_BLOB faces, uint kind, vx_app_light light,
+                                       uint shadows_at, vx_app_walk_cursor c) {
+    return vx_app_record_sample(records, faces, kind, c.row, c.r.dx, c.r.dy, c.r.dz,
+                                vx_app_walk_light(records, light, shadows_at, c.row));
+}
+
+/* Blends `seen`, what voxel (x, y, z) shows, into the cursor's state: C += T a c, T *= 1 - a. */
+VX_FN vx_app_walk_cursor vx_app_walk_blend(vx_app_sample seen, uint kind, int x, int y, int z,
+                                           vx_app_walk_cursor c) {
     /* A run of touching voxels is one surface crossing: their coverages add up (a line
      * crosses a sheet once); separate runs blend as independent layers. Faithful records
      * keep the paper's rule: every voxel is a layer of its own. */
@@ -69,28 +91,23 @@ VX_FN vx_app_walk_cursor vx_app_walk_blend(VX_BLOB records, VX_BLOB faces, uint 
     return c;
 }
 
-/* The walk after the closest hit `h` of c.r: the voxel blended, C += T a c, T *= 1 - a,
- * then each voxel with a record that the ray goes on into face to face, and the ray moved
- * past the last of them; it stops (going 0) when the ray left the structure, T fell
- * below `cutoff`, a voxel has no record, or the visits or closest hits ran out.
- * Precomputed shadows (appearance/shadows.hpp): where `shadows_at` is not 0, `records`
- * holds a visibility byte a row from that word on (four a word, row 0 in the low byte), and
- * each voxel is lit by the light scaled by its visibility. */
-VX_FN vx_app_walk_cursor vx_app_walk_visit(VX_BLOB index, VX_BLOB records, VX_BLOB faces, uint kind,
-                                           vx_app_light light, float cutoff, uint max_visits, uint shadows_at,
-                                           vx_hit h, vx_app_walk_cursor c) {
+/* The first half of a visit: takes closest hit `h` of c.r. Where it is a voxel with a
+ * record, that is the voxel to blend (c.row, c.x, c.y, c.z); else the walk stops (going 0:
+ * the ray left the structure, or the voxel has no record) or, where the re-entry landed in
+ * the voxel just left, steps on and wants another closest hit. */
+VX_FN vx_app_walk_cursor vx_app_walk_enter(VX_BLOB index, uint max_visits, vx_hit h, vx_app_walk_cursor c) {
     c.s.w.steps = c.s.w.steps + h.steps;
     c.tries = c.tries + 1u;
     c.going = 0u;
+    c.row = VX_APP_NO_ROW;
     if (h.status != VX_STATUS_HIT) return c;
-    bool more_tries = c.tries < 4u * max_visits;
     if (c.s.w.visits > 0u && h.x == c.s.px && h.y == c.s.py && h.z == c.s.pz) {
         /* The re-entry landed in the voxel just left: at its far face the entry point's
          * rounding can keep a slow axis on this side. Step on, further each time. */
         float exit_t = vx_app_next_voxel(c.r, h.x, h.y, h.z).t;
         c.r.tmin = vx_app_add_product(vx_fmax(c.r.tmin, exit_t), vx_fmax(exit_t, 1.0f), c.nudge, 1.0f);
         c.nudge = c.nudge * 4.0f;
-        c.going = more_tries ? 1u : 0u;
+        c.going = c.tries < 4u * max_visits ? 1u : 0u;
         return c;
     }
     c.nudge = 1.0e-6f;
@@ -104,23 +121,45 @@ VX_FN vx_app_walk_cursor vx_app_walk_visit(VX_BLOB index, VX_BLOB records, VX_BL
         c.s.w.t = h.t, c.s.w.x = h.x, c.s.w.y = h.y, c.s.w.z = h.z, c.s.w.face = h.face, c.s.w.material = h.material;
         c.s.w.status = VX_STATUS_HIT;
     }
-    /* Blend voxel h and then, while the ray goes straight on into a touching voxel that has
-     * a record (a surface's voxels mostly touch), that one too: one DDA step and a lookup,
-     * not a re-entry. Ties (the ray leaves through an edge or corner) re-enter, as before. */
-    int x = h.x, y = h.y, z = h.z;
-    for (;;) {
-        c = vx_app_walk_blend(records, faces, kind, light, shadows_at, row, x, y, z, c);
-        if (c.s.w.transmittance < cutoff) {
-            c.going = 0u;
-            return c;
-        }
-        vx_app_next next = vx_app_next_voxel(c.r, x, y, z);
-        c.r.tmin = next.t;
-        c.going = c.s.w.visits < max_visits && more_tries ? 1u : 0u;
-        if (c.going == 0u || next.tie != 0u || !(next.t < c.r.tmax)) return c;
-        row = vx_app_row(index, next.x, next.y, next.z);
-        if (row == VX_APP_NO_ROW) return c;
-        c.s.w.steps = c.s.w.steps + 1u;
-        x = next.x, y = next.y, z = next.z;
+    c.row = row, c.x = h.x, c.y = h.y, c.z = h.z, c.going = 1u;
+    return c;
+}
+
+/* The second half: blends `seen`, what voxel c.row shows along the ray (vx_app_walk_sample),
+ * and moves the ray past it. Where the ray goes straight on into a touching voxel that has a
+ * record (a surface's voxels mostly touch), that one is the next to blend: one DDA step and a
+ * lookup, not a re-entry. Ties (the ray leaves through an edge or corner) re-enter. The walk
+ * stops (going 0) when T fell below `cutoff`, or the visits or closest hits ran out. */
+VX_FN vx_app_walk_cursor vx_app_walk_take(VX_BLOB index, uint kind, float cutoff, uint max_visits,
+                                          vx_app_sample seen, vx_app_walk_cursor c) {
+    c = vx_app_walk_blend(seen, kind, c.x, c.y, c.z, c);
+    c.row = VX_APP_NO_ROW;
+    if (c.s.w.transmittance < cutoff) {
+        c.going = 0u;
+        return c;
     }
+    vx_app_next next = vx_app_next_voxel(c.r, c.x, c.y, c.z);
+    c.r.tmin = next.t;
+    c.going = c.s.w.visits < max_visits && c.tries < 4u * max_visits ? 1u : 0u;
+    if (c.going == 0u || next.tie != 0u || !(next.t < c.r.tmax)) return c;
+    uint row = vx_app_row(index, next.x, next.y, next.z);
+    if (row == VX_APP_NO_ROW) return c;
+    c.s.w.steps = c.s.w.steps + 1u;
+    c.row = row, c.x = next.x, c.y = next.y, c.z = next.z;
+    return c;
+}
+
+/* The walk after the closest hit `h` of c.r: the voxel blended, then each voxel with a
+ * record that the ray goes on into face to face, and the ray moved past the last of them
+ * (vx_app_walk_enter, then vx_app_walk_take while there is a voxel to blend). It stops
+ * (going 0) when the ray left the structure, T fell below `cutoff`, a voxel has no record,
+ * or the visits or closest hits ran out. `shadows_at`: see vx_app_walk_light. */
+VX_FN vx_app_walk_cursor vx_app_walk_visit(VX_BLOB index, VX_BLOB records, VX_BLOB faces, uint kind,
+                                           vx_app_light light, float cutoff, uint max_visits, uint shadows_at,
+                                           vx_hit h, vx_app_walk_cursor c) {
+    c = vx_app_walk_enter(index, max_visits, h, c);
+    while (c.row != VX_APP_NO_ROW)
+        c = vx_app_walk_take(index, kind, cutoff, max_visits,
+                             vx_app_walk_sample(records, faces, kind, light, shadows_at, c), c);
+    return c;
 }

@@ -2,9 +2,10 @@
 // rays on a thread pool, each blended front to back through its voxels' appearance records.
 // The same source the GPUs run. With voxray::cpu (the default) the walk goes in rounds over
 // a batch of rays: the closest hits of every ray still walking, on the SIMD stream the
-// tracer uses, then each ray's visit (appearance/walk_visit.h) on the scalar lanes. With
-// voxray::cpu_scalar each ray walks alone on the scalar lanes. Both give the same pixels
-// bit for bit: the SIMD stream's hits are the scalar kernel's.
+// tracer uses, then each ray's visit (appearance/walk_visit.h), its compact records'
+// samples on SIMD lanes too (cpu/appearance_samples.hpp). With voxray::cpu_scalar each ray
+// walks alone on the scalar lanes. Both give the same pixels bit for bit: the SIMD lanes
+// run the scalar kernel's code.
 //
 //   voxray::appearance_walker<voxray::kernels::dense_grid_kernel> walker(blob, table);
 //   std::vector<voxray::appearance_pixel> out = walker.walk(rays, light);
@@ -23,6 +24,7 @@
 #include "voxray/core/error.hpp"
 #include "voxray/core/ray.hpp"
 #include "voxray/cpu/appearance_kernels.hpp"
+#include "voxray/cpu/appearance_samples.hpp"
 #include "voxray/cpu/cpu_backend.hpp"
 
 namespace voxray::kernels::scalar {
@@ -97,7 +99,9 @@ private:
     static constexpr std::size_t batch = 512;
 
     // The walks of `rays` into `out`, in rounds: the closest hits of the rays still walking
-    // on the engine's SIMD lanes, then each one's visit.
+    // on the engine's SIMD lanes, then each one's enter; then, while any has a voxel to
+    // blend, those voxels' samples (on the SIMD lanes where the records have lane code) and
+    // a take each (appearance/walk_visit.h).
     void walk_in_rounds(std::span<const ray> rays, const appearance_light& light, std::uint32_t shadows_at,
                         std::span<appearance_pixel> out) const {
         namespace k = kernels::scalar;
@@ -110,21 +114,54 @@ private:
         }
         std::vector<ray> next(going.size());
         std::vector<hit> hits(going.size());
+        std::vector<std::uint32_t> blending(going.size());  // the cursors with a voxel to blend
+        std::vector<k::vx_app_sample> samples(going.size());
+        std::vector<cpu_detail::appearance_job> jobs(going.size());
         while (!going.empty()) {
             for (std::size_t j = 0; j < going.size(); ++j) next[j] = cpu_detail::from_lane(cursors[going[j]].r);
             engine_.template trace_here<VX_MODE_CLOSEST>(std::span(next).first(going.size()),
                                                           std::span(hits).first(going.size()));
-            std::size_t kept = 0;
+            std::size_t count = 0;
             for (std::size_t j = 0; j < going.size(); ++j) {
                 k::vx_app_walk_cursor& c = cursors[going[j]];
-                c = k::vx_app_walk_visit(words_.index.data(), words_.records.data(), words_.faces.data(), words_.kind,
-                                         l, light.cutoff, light.max_visits, shadows_at, cpu_detail::to_lane(hits[j]),
-                                         c);
-                if (c.going) going[kept++] = going[j];
+                c = k::vx_app_walk_enter(words_.index.data(), light.max_visits, cpu_detail::to_lane(hits[j]), c);
+                if (c.row != VX_APP_NO_ROW) blending[count++] = going[j];
             }
-            going.resize(kept);
+            while (count > 0) {
+                sample(cursors, std::span(blending).first(count), l, shadows_at, jobs, samples);
+                std::size_t kept = 0;
+                for (std::size_t j = 0; j < count; ++j) {
+                    k::vx_app_walk_cursor& c = cursors[blending[j]];
+                    c = k::vx_app_walk_take(words_.index.data(), words_.kind, light.cutoff, light.max_visits,
+                                            samples[j], c);
+                    if (c.row != VX_APP_NO_ROW) blending[kept++] = blending[j];
+                }
+                count = kept;
+            }
+            std::erase_if(going, [&](std::uint32_t i) { return cursors[i].going == 0u; });
         }
         for (std::size_t i = 0; i < rays.size(); ++i) out[i] = std::bit_cast<appearance_pixel>(cursors[i].s.w);
+    }
+
+    // What the voxel each cursor of `which` is to blend shows, into samples[0...] (jobs: room
+    // for as many).
+    void sample(std::span<const kernels::scalar::vx_app_walk_cursor> cursors, std::span<const std::uint32_t> which,
+                const kernels::scalar::vx_app_light& l, std::uint32_t shadows_at,
+                std::span<cpu_detail::appearance_job> jobs, std::span<kernels::scalar::vx_app_sample> samples) const {
+        namespace k = kernels::scalar;
+        if (words_.kind != VX_APP_KIND_COMPACT) {
+            for (std::size_t j = 0; j < which.size(); ++j)
+                samples[j] = k::vx_app_walk_sample(words_.records.data(), words_.faces.data(), words_.kind, l,
+                                                   shadows_at, cursors[which[j]]);
+            return;
+        }
+        for (std::size_t j = 0; j < which.size(); ++j) {
+            const k::vx_app_walk_cursor& c = cursors[which[j]];
+            k::vx_app_light lit = k::vx_app_walk_light(words_.records.data(), l, shadows_at, c.row);
+            jobs[j] = {c.row, c.r.dx, c.r.dy, c.r.dz, lit};
+        }
+        cpu_detail::sample_lanes<VX_APP_KIND_COMPACT>(engine_.simd_width(), words_.records.data(),
+                                                      words_.faces.data(), jobs.data(), samples.data(), which.size());
     }
 
     static cpu_options borrowing(cpu_options o) {

@@ -59,7 +59,7 @@ inline std::int32_t vx_u2i(std::uint32_t x) { return std::int32_t(x); }
 inline std::uint32_t vx_f_bits(float x) { return std::bit_cast<std::uint32_t>(x); }
 inline float vx_bits_f(std::uint32_t x) { return std::bit_cast<float>(x); }
 inline float vx_floor(float x) { return std::floor(x); }
-inline float vx_sqrt(float x) { return std::sqrt(x); }  // scalar code only (appearance/record.h)
+inline float vx_sqrt(float x) { return std::sqrt(x); }  // appearance/compact_record.h, record.h
 inline float vx_f32_splat(float x) { return x; }
 inline std::int32_t vx_i32_splat(std::int32_t x) { return x; }
 inline std::uint32_t vx_u32_splat(std::uint32_t x) { return x; }
