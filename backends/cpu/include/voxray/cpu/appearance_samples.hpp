@@ -26,37 +26,9 @@ struct appearance_job {
         const std::uint32_t*, const std::uint32_t*, const voxray::cpu_detail::appearance_job*,                 \
         voxray::kernels::scalar::vx_app_sample*, std::size_t);
 
-#if VOXRAY_CPU_SIMD_LANES
-namespace voxray::kernels {
-VOXRAY_AVX2_BEGIN
-#define VX_SIMD_WIDTH 8
-namespace simd8 {
-#include "voxray/appearance/compact_record.h"
-#include "voxray/cpu/sample_stream.inc"
-}  // namespace simd8
-#undef VX_SIMD_WIDTH
-VOXRAY_AVX2_END
-VOXRAY_AVX512_BEGIN
-#define VX_SIMD_WIDTH 16
-namespace simd16 {
-#include "voxray/appearance/compact_record.h"
-#include "voxray/cpu/sample_stream.inc"
-}  // namespace simd16
-#undef VX_SIMD_WIDTH
-VOXRAY_AVX512_END
-}  // namespace voxray::kernels
-#else
-namespace voxray::kernels::simd8 {
-template <std::uint32_t Kind>
-void sample_stream(const std::uint32_t* records, const std::uint32_t* faces, const cpu_detail::appearance_job* jobs,
-                   scalar::vx_app_sample* out, std::size_t count);
-}  // namespace voxray::kernels::simd8
-namespace voxray::kernels::simd16 {
-template <std::uint32_t Kind>
-void sample_stream(const std::uint32_t* records, const std::uint32_t* faces, const cpu_detail::appearance_job* jobs,
-                   scalar::vx_app_sample* out, std::size_t count);
-}  // namespace voxray::kernels::simd16
-#endif
+// The sample stream, once per SIMD lane set (see sample_stream.inc).
+#define VOXRAY_LANE_SET_BODY "voxray/cpu/sample_stream.inc"
+#include "voxray/cpu/each_lane_set.inc"
 
 namespace voxray::cpu_detail {
 // The samples of `count` jobs' records of kind Kind on `width` lanes (8 or 16).

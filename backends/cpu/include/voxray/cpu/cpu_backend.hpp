@@ -76,35 +76,22 @@ inline ray from_lane(const kernels::scalar::vx_ray& r) {
 
 }  // namespace cpu_detail
 
-// The stream, once per SIMD lane set (see simd_stream.inc); declared only where
-// voxray::kernels holds its instances (VOXRAY_CPU_SIMD_LANES, cpu/lanes.hpp).
-#if VOXRAY_CPU_SIMD_LANES
-VOXRAY_AVX2_BEGIN
-namespace kernels::simd8 {
-#include "voxray/cpu/simd_stream.inc"
-}  // namespace kernels::simd8
-VOXRAY_AVX2_END
-VOXRAY_AVX512_BEGIN
-namespace kernels::simd16 {
-#include "voxray/cpu/simd_stream.inc"
-}  // namespace kernels::simd16
-VOXRAY_AVX512_END
-#else
+#if !VOXRAY_CPU_SIMD_LANES
 namespace kernels {
 // Whether voxray::kernels holds the streams of structure kernel Kernel (true for the
 // registered ones: voxray/generated/cpu_kernel_instances.hpp).
 template <class Kernel>
 inline constexpr bool linked_streams = false;
 }  // namespace kernels
-namespace kernels::simd8 {
-template <class Kernel, std::uint32_t Mode>
-void trace_stream(const std::uint32_t* blob, const voxray::ray* rays, voxray::hit* hits, std::size_t count);
-}  // namespace kernels::simd8
-namespace kernels::simd16 {
-template <class Kernel, std::uint32_t Mode>
-void trace_stream(const std::uint32_t* blob, const voxray::ray* rays, voxray::hit* hits, std::size_t count);
-}  // namespace kernels::simd16
 #endif
+}  // namespace voxray
+
+// The stream, once per SIMD lane set (see simd_stream.inc): defined where the lane sets are
+// compiled, else only declared, voxray::kernels holding its instances (cpu/lanes.hpp).
+#define VOXRAY_LANE_SET_BODY "voxray/cpu/simd_stream.inc"
+#include "voxray/cpu/each_lane_set.inc"
+
+namespace voxray {
 
 namespace kernels::scalar {
 // The scalar kernel over a batch, one ray after another (the cpu-scalar backend, and

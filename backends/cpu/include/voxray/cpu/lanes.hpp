@@ -123,25 +123,12 @@ inline bool cpu_has_avx512() {
     return has;
 }
 
-#if VOXRAY_CPU_SIMD_LANES
-VOXRAY_AVX2_BEGIN
-#define VX_SIMD_WIDTH 8
-namespace simd8 {
-#include "voxray/cpu/simd_lanes.inc"
-}  // namespace simd8
-#undef VX_SIMD_WIDTH
-VOXRAY_AVX2_END
-
-VOXRAY_AVX512_BEGIN
-#define VX_SIMD_WIDTH 16
-namespace simd16 {
-#include "voxray/cpu/simd_lanes.inc"
-}  // namespace simd16
-#undef VX_SIMD_WIDTH
-VOXRAY_AVX512_END
-#endif
-
 }  // namespace voxray::kernels
+
+#if VOXRAY_CPU_SIMD_LANES
+#define VOXRAY_LANE_SET_BODY "voxray/cpu/simd_lanes.inc"
+#include "voxray/cpu/each_lane_set.inc"
+#endif
 
 // The kernel_lanes specialization of structure kernel `s` in the current lane
 // namespace: the functions every kernel names vx_<s>_load/begin/step/finish/status/trace
