@@ -155,8 +155,8 @@ TEST(appearance_walk, one_closest_hit_blends_a_run_of_touching_voxels) {
     EXPECT_EQ(c.s.w.visits, 5u);
     EXPECT_EQ(glm::ivec3(c.s.px, c.s.py, c.s.pz), glm::ivec3(1, 1, 4));
     EXPECT_EQ(c.s.w.steps, 2u + 4u);  // the closest hit's steps, then a step a voxel
-    EXPECT_EQ(c.r.tmin, 8.0f);        // the far face of (1, 1, 4): z = 5
-    EXPECT_EQ(c.going, 1u);           // on to the closest hit past the gap
+    EXPECT_EQ(c.r.tmin, 8.0f + 8.0f * 1e-6f);  // just past the far face of (1, 1, 4): z = 5
+    EXPECT_EQ(c.going, 1u);                     // on to the closest hit past the gap
     EXPECT_NEAR(c.s.w.transmittance, 1.0f - 5.0f / 15.0f, 1e-6f);  // one run: coverages add up
     // Through (1, 1, 7) towards +x+y, leaving it exactly through the edge it shares with
     // (2, 2, 7): not through a face, so no step (not even into (2, 1, 7), whose face the ray
@@ -165,6 +165,28 @@ TEST(appearance_walk, one_closest_hit_blends_a_run_of_touching_voxels) {
     c = visit(diagonal, {0.0f, 1, 1, 7, VX_FACE_NONE, 1u, 0u, VX_STATUS_HIT});
     EXPECT_EQ(c.s.w.visits, 1u);
     EXPECT_EQ(c.going, 1u);
+}
+
+// A re-entry starts just past the exit of the voxel it left, so it does not land back in
+// that voxel: down the column from above (-z, where the entry point at a face lies in the
+// voxel just left), the walk takes one closest hit per run and one past the last.
+TEST(appearance_walk, a_re_entry_takes_one_closest_hit) {
+    voxel_model model;
+    for (int z = 0; z < 5; ++z) model.set({1, 1, z}, 1);
+    model.set({1, 1, 7}, 1);
+    dense_grid grid(model);
+    std::vector<std::uint32_t> blob(grid.blob().begin(), grid.blob().end());
+    walk_words words(uniform_table(model, 1));
+    namespace k = kernels::scalar;
+    k::vx_app_walk_cursor c =
+        k::vx_app_walk_begin({1.5f, 1.5f, 12.0f, 0.0f, 0.0f, 0.0f, -1.0f, 1e30f}, k::vx_app_walk_state_start(), 64u);
+    while (c.going != 0u) {
+        k::vx_hit h = k::kernel_lanes<kernels::dense_grid_kernel>::trace<VX_MODE_CLOSEST>(blob.data(), c.r);
+        c = k::vx_app_walk_visit(words.index.data(), words.records.data(), words.faces.data(), words.kind,
+                                 {0.0f, 0.0f, 1.0f, 0.25f}, 0.0f, 64u, 0u, h, c);
+    }
+    EXPECT_EQ(c.s.w.visits, 6u);
+    EXPECT_EQ(c.tries, 3u);  // (1, 1, 7); the column's top after the gap; past its bottom: a miss
 }
 
 // Voxels apart along a ray are separate layers: T = (1 - a)^2, C = a c + (1 - a) a c.

@@ -31,7 +31,7 @@ VX_APP_FN float vx_app_add_product(float sum, float x, float y, float z) { retur
 VX_STRUCT(vx_app_walk_cursor)
     vx_app_walk_state s;
     vx_ray r;     /* the ray; its tmin moves past each voxel walked */
-    float nudge;  /* how far on a re-entry that landed in the voxel just left steps next */
+    float nudge;  /* how far past a voxel's exit a re-entry starts (relative to max(t, 1)) */
     uint tries;   /* closest hits taken */
     uint going;   /* 1 while the walk wants the closest hit along r (or has a voxel to blend) */
     uint row;     /* the record of the voxel to blend next, VX_APP_NO_ROW when none */
@@ -128,8 +128,9 @@ VX_FN vx_app_walk_cursor vx_app_walk_enter(VX_BLOB index, uint max_visits, vx_hi
 /* The second half: blends `seen`, what voxel c.row shows along the ray (vx_app_walk_sample),
  * and moves the ray past it. Where the ray goes straight on into a touching voxel that has a
  * record (a surface's voxels mostly touch), that one is the next to blend: one DDA step and a
- * lookup, not a re-entry. Ties (the ray leaves through an edge or corner) re-enter. The walk
- * stops (going 0) when T fell below `cutoff`, or the visits or closest hits ran out. */
+ * lookup, not a re-entry. Where the ray leaves through an edge or a corner, or into a voxel
+ * without a record, it re-enters just past the exit. The walk stops (going 0) when T fell
+ * below `cutoff`, or the visits or closest hits ran out. */
 VX_FN vx_app_walk_cursor vx_app_walk_take(VX_BLOB index, uint kind, float cutoff, uint max_visits,
                                           vx_app_sample seen, vx_app_walk_cursor c) {
     c = vx_app_walk_blend(seen, kind, c.x, c.y, c.z, c);
@@ -141,9 +142,15 @@ VX_FN vx_app_walk_cursor vx_app_walk_take(VX_BLOB index, uint kind, float cutoff
     vx_app_next next = vx_app_next_voxel(c.r, c.x, c.y, c.z);
     c.r.tmin = next.t;
     c.going = c.s.w.visits < max_visits && c.tries < 4u * max_visits ? 1u : 0u;
-    if (c.going == 0u || next.tie != 0u || !(next.t < c.r.tmax)) return c;
-    uint row = vx_app_row(index, next.x, next.y, next.z);
-    if (row == VX_APP_NO_ROW) return c;
+    if (c.going == 0u) return c;
+    uint row = next.tie == 0u && next.t < c.r.tmax ? vx_app_row(index, next.x, next.y, next.z) : VX_APP_NO_ROW;
+    if (row == VX_APP_NO_ROW) {
+        /* Past the exit, by the step vx_app_walk_enter takes where a re-entry lands back in
+         * the voxel it left: one at the exit itself did so in half the re-entries (the
+         * entry point's rounding), each a closest hit for nothing. */
+        c.r.tmin = vx_app_add_product(next.t, vx_fmax(next.t, 1.0f), c.nudge, 1.0f);
+        return c;
+    }
     c.s.w.steps = c.s.w.steps + 1u;
     c.row = row, c.x = next.x, c.y = next.y, c.z = next.z;
     return c;
