@@ -3,6 +3,7 @@
 // output path that can be written, enough memory for a request).
 #pragma once
 #include <sys/resource.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <cerrno>
@@ -11,6 +12,7 @@
 #include <filesystem>
 #include <fstream>
 #include <functional>
+#include <random>
 #include <string>
 #include <vector>
 
@@ -96,7 +98,11 @@ inline void require_writable_folder(const std::string& path, const std::string& 
     std::filesystem::create_directories(path, ec);
     if (ec || !std::filesystem::is_directory(path))
         fail(option, " ", path, ": cannot be made a folder (", ec ? ec.message() : "it is a file", ")");
-    require_writable((std::filesystem::path(path) / ".voxray-write-probe").string(), option);
+    // A probe of this process's own: ranks of one run probe the same folder at once, and with
+    // one shared name a rank could re-create the probe another had just removed, and keep it.
+    std::string probe =
+        ".voxray-write-probe-" + std::to_string(::getpid()) + "-" + std::to_string(std::random_device{}());
+    require_writable((std::filesystem::path(path) / probe).string(), option);
 }
 
 // Bytes this process may still allocate: the smaller of the kernel's MemAvailable and the
