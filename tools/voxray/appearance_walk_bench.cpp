@@ -40,6 +40,8 @@ struct appearance_walk_bench_options {
     int view = 0;
     unsigned threads = 2;
     int runs = 5;
+    std::string structures = join_names(walk_structures);
+    std::string backends = join_names(walk_backends);
     std::string json;
 };
 
@@ -139,10 +141,10 @@ int appearance_walk_bench(const appearance_walk_bench_options& o) {
     std::printf("%-24s %4s %-9s %-10s %4s %-9s %8s %9s %9s %7s %7s %12s %11s\n", "scene", "res", "structure",
                 "backend", "simd", "method", "walk fps", "ns/ray", "cycles", "steps", "visits", "1st-hit Mr/s",
                 "1st steps");
-    for (const std::string& structure_name : walk_structures) {
+    for (const std::string& structure_name : split_names(o.structures)) {
         walk_structure structure = build_walk_structure(structure_name, model);
         auto [first_mrays, first_steps] = time_first_hit(structure_name, model, rays, o.runs);
-        for (const std::string& backend : walk_backends) {
+        for (const std::string& backend : split_names(o.backends)) {
             for (const auto& [method, table] : tables) {
                 walk_timing t = with_walk_kernel(structure_name, [&]<class Kernel>() {
                     return with_walk_backend(backend, [&]<class Backend>() {
@@ -204,6 +206,10 @@ command add_appearance_walk_bench(CLI::App& parent) {
         ->check(CLI::Range(1u, 256u))->capture_default_str();
     app->add_option("--runs", o->runs, "timed walks of each (their median is reported)")
         ->check(CLI::Range(1, 100))->capture_default_str();
+    app->add_option("--structures", o->structures, "structures whose first-hit kernels the walk re-enters")
+        ->check(names_from(walk_structures, "structure"))->capture_default_str();
+    app->add_option("--backends", o->backends, "CPU backends the walk runs on")
+        ->check(names_from(walk_backends, "backend"))->capture_default_str();
     app->add_option("--json", o->json, "write one JSON line per structure, backend and method after a header line");
     return {app, [o] { return appearance_walk_bench(*o); }};
 }

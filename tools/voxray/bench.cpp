@@ -297,7 +297,7 @@ command add_bench(CLI::App& parent) {
                                                "or --edits: the brickmap's editing rates");
     auto o = std::make_shared<bench_options>();
     o->structures = structure_names(",");  // every registered structure and baseline
-    for (auto& b : backend_names()) o->backends += (o->backends.empty() ? "" : ",") + b;
+    o->backends = join_names(backend_names());
     o->ray_sets = "primary,secondary,shadow";
     o->scene.add_to(app, true);
     app->add_option("--structures,--structure", o->structures, "structures (and baselines) to measure")

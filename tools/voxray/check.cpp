@@ -159,7 +159,7 @@ int check(const check_options& o) {
 command add_check(CLI::App& parent) {
     auto* app = parent.add_subcommand("check", "every structure x backend against the reference on the same rays");
     auto o = std::make_shared<check_options>();
-    for (auto& b : backend_names()) o->backends += (o->backends.empty() ? "" : ",") + b;
+    o->backends = join_names(backend_names());
     o->scene.add_to(app, false);
     auto* rays = app->add_option("--rays", o->rays, "rays to trace (half camera rays, half random)")
         ->check(CLI::Range(std::size_t(1), std::size_t(100000000)))->capture_default_str();

@@ -53,6 +53,13 @@ inline std::vector<std::string> split_names(const std::string& s) {
     return out;
 }
 
+// The names as one comma-separated list (split_names' inverse).
+inline std::string join_names(const std::vector<std::string>& names) {
+    std::string out;
+    for (const std::string& n : names) out += (out.empty() ? "" : ",") + n;
+    return out;
+}
+
 // A CLI11 check for a comma-separated list of names from `known`: at least one, each known.
 inline CLI::Validator names_from(std::vector<std::string> known, std::string what) {
     return CLI::Validator(
