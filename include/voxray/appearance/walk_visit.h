@@ -91,6 +91,12 @@ VX_FN vx_app_walk_cursor vx_app_walk_blend(vx_app_sample seen, uint kind, int x,
     return c;
 }
 
+/* Where a re-entry starts once the ray left a voxel at exit_t: just past the exit (and not
+ * before tmin), by c.nudge max(exit_t, 1). */
+VX_FN float vx_app_walk_past(vx_app_walk_cursor c, float exit_t) {
+    return vx_app_add_product(vx_fmax(c.r.tmin, exit_t), vx_fmax(exit_t, 1.0f), c.nudge, 1.0f);
+}
+
 /* The first half of a visit: takes closest hit `h` of c.r. Where it is a voxel with a
  * record, that is the voxel to blend (c.row, c.x, c.y, c.z); else the walk stops (going 0:
  * the ray left the structure, or the voxel has no record) or, where the re-entry landed in
@@ -104,8 +110,7 @@ VX_FN vx_app_walk_cursor vx_app_walk_enter(VX_BLOB index, uint max_visits, vx_hi
     if (c.s.w.visits > 0u && h.x == c.s.px && h.y == c.s.py && h.z == c.s.pz) {
         /* The re-entry landed in the voxel just left: at its far face the entry point's
          * rounding can keep a slow axis on this side. Step on, further each time. */
-        float exit_t = vx_app_next_voxel(c.r, h.x, h.y, h.z).t;
-        c.r.tmin = vx_app_add_product(vx_fmax(c.r.tmin, exit_t), vx_fmax(exit_t, 1.0f), c.nudge, 1.0f);
+        c.r.tmin = vx_app_walk_past(c, vx_app_next_voxel(c.r, h.x, h.y, h.z).t);
         c.nudge = c.nudge * 4.0f;
         c.going = c.tries < 4u * max_visits ? 1u : 0u;
         return c;
@@ -148,7 +153,7 @@ VX_FN vx_app_walk_cursor vx_app_walk_take(VX_BLOB index, uint kind, float cutoff
         /* Past the exit, by the step vx_app_walk_enter takes where a re-entry lands back in
          * the voxel it left: one at the exit itself did so in half the re-entries (the
          * entry point's rounding), each a closest hit for nothing. */
-        c.r.tmin = vx_app_add_product(next.t, vx_fmax(next.t, 1.0f), c.nudge, 1.0f);
+        c.r.tmin = vx_app_walk_past(c, next.t);
         return c;
     }
     c.s.w.steps = c.s.w.steps + 1u;
