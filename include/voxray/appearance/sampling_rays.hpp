@@ -70,52 +70,60 @@ inline double exit_length(glm::dvec3 p, glm::dvec3 d) {
 class voxel_rays {
 public:
     voxel_rays(glm::ivec3 voxel, std::uint32_t count, bool stratified, std::uint64_t seed)
-        : voxel_(voxel), count_(count), stratified_(stratified), stream_(seed, voxel) {
+        : voxel_(voxel), stratified_(stratified), stream_(seed, voxel) {
         if (!stratified) return;
-        // The Fibonacci set turned by one angle a voxel: cos and sin of each ray's own angle
-        // (the same for every voxel, made once a thread) turned by the voxel's.
+        // The Fibonacci set turned by one angle a voxel: each ray's own height, ring radius
+        // and angle (the same for every voxel, made once a thread) turned by the voxel's.
         const double turn = 2.0 * std::numbers::pi * stream_.uniform01(0xFFFFFFFFu, 0);
         cos_turn_ = std::cos(turn), sin_turn_ = std::sin(turn);
-        thread_local std::map<std::uint32_t, std::vector<glm::dvec2>> angles_by_count;  // nodes stay put
-        std::vector<glm::dvec2>& angles = angles_by_count[count];
-        for (std::uint32_t i = std::uint32_t(angles.size()); i < count; ++i) {
+        thread_local std::map<std::uint32_t, std::vector<fibonacci_node>> nodes_by_count;  // nodes stay put
+        std::vector<fibonacci_node>& nodes = nodes_by_count[count];
+        for (std::uint32_t i = std::uint32_t(nodes.size()); i < count; ++i) {
             double a = 2.0 * std::numbers::pi * (double(i) * 0.6180339887498949);
-            angles.push_back({std::cos(a), std::sin(a)});
+            double z = 1.0 - (2.0 * double(i) + 1.0) / double(count);
+            nodes.push_back({std::cos(a), std::sin(a), z, ring_radius(z)});
         }
-        angles_ = angles.data();
+        nodes_ = nodes.data();
     }
 
     // Ray `i`: its direction, then its entry point.
     sampling_ray operator()(std::uint32_t i) const {
-        double z, cos_phi, sin_phi;
+        double z, r, cos_phi, sin_phi;
         if (stratified_) {  // spherical Fibonacci, turned
-            z = 1.0 - (2.0 * double(i) + 1.0) / double(count_);
-            glm::dvec2 a = angles_[i];
-            cos_phi = a.x * cos_turn_ - a.y * sin_turn_;
-            sin_phi = a.y * cos_turn_ + a.x * sin_turn_;
+            const fibonacci_node& n = nodes_[i];
+            z = n.z, r = n.r;
+            cos_phi = n.cos_a * cos_turn_ - n.sin_a * sin_turn_;
+            sin_phi = n.sin_a * cos_turn_ + n.cos_a * sin_turn_;
         } else {
             z = 1.0 - 2.0 * stream_.uniform01(i, 0);
+            r = ring_radius(z);
             double phi = 2.0 * std::numbers::pi * stream_.uniform01(i, 1);
             cos_phi = std::cos(phi), sin_phi = std::sin(phi);
         }
-        double r = std::sqrt(std::max(0.0, 1.0 - z * z));
         glm::dvec3 d(r * cos_phi, r * sin_phi, z);
-        // The entry face, by projected area, then a point on it.
+        // The entry face, by projected area, then a point on it. (The face as a sum of
+        // comparisons, not branches: which one a ray takes is random, so branches mispredict.)
         double weights[3] = {std::fabs(d.x), std::fabs(d.y), std::fabs(d.z)};
         double pick = stream_.uniform01(i, 2) * (weights[0] + weights[1] + weights[2]);
-        int axis = pick < weights[0] ? 0 : (pick < weights[0] + weights[1] ? 1 : 2);
+        int axis = int(pick >= weights[0]) + int(pick >= weights[0] + weights[1]);
         glm::dvec3 p(stream_.uniform01(i, 3), stream_.uniform01(i, 4), stream_.uniform01(i, 5));
         p[axis] = d[axis] > 0 ? 0.0 : 1.0;
         return {glm::dvec3(voxel_) + p, d, exit_length(p, d)};
     }
 
 private:
+    // A node of the Fibonacci set before the voxel's turn: its angle's cos and sin, its
+    // height z and the radius of its ring, sqrt(1 - z^2).
+    struct fibonacci_node {
+        double cos_a, sin_a, z, r;
+    };
+    static double ring_radius(double z) { return std::sqrt(std::max(0.0, 1.0 - z * z)); }
+
     glm::ivec3 voxel_;
-    std::uint32_t count_;
     bool stratified_;
     voxel_stream stream_;
     double cos_turn_ = 1, sin_turn_ = 0;
-    const glm::dvec2* angles_ = nullptr;
+    const fibonacci_node* nodes_ = nullptr;
 };
 
 }  // namespace voxray::appearance
