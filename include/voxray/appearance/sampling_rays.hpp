@@ -59,10 +59,15 @@ struct sampling_ray {
 
 // How far a ray from point p of the unit cube along unit d goes before it leaves the cube:
 // to the nearest exit plane along each moving axis.
+// The three divisions are one vector division (each lane rounded as the scalar one): they
+// were the ray generator's longest wait.
 inline double exit_length(glm::dvec3 p, glm::dvec3 d) {
+    typedef double doubles __attribute__((vector_size(4 * sizeof(double))));
+    const doubles far = {d.x > 0 ? 1.0 : 0.0, d.y > 0 ? 1.0 : 0.0, d.z > 0 ? 1.0 : 0.0, 0.0};
+    const doubles along = (far - doubles{p.x, p.y, p.z, 0.0}) / doubles{d.x, d.y, d.z, 1.0};
     double length = 1e30;
     for (int a = 0; a < 3; ++a)
-        if (d[a] != 0.0) length = std::min(length, ((d[a] > 0 ? 1.0 : 0.0) - p[a]) / d[a]);
+        if (d[a] != 0.0) length = std::min(length, along[a]);
     return std::max(length, 0.0);
 }
 

@@ -13,6 +13,7 @@
 // voxel space); tests/appearance/test_voxel_triangles.cpp checks them against Embree's.
 #pragma once
 #include <array>
+#include <bit>
 #include <cmath>
 #include <cstdint>
 #include <limits>
@@ -89,8 +90,14 @@ public:
             floats v = (dir.x * qx + dir.y * qy + dir.z * qz) * inv;
             floats t = (b.ac[0] * qx + b.ac[1] * qy + b.ac[2] * qz) * inv;
             ints inside = ~flat & (u >= 0.0f) & (v >= 0.0f) & (u + v <= 1.0f) & (t >= tnear) & (t <= best);
-            for (std::size_t i = 0; i < lanes && first + i < ids_.size(); ++i)
-                if (inside[i] && t[i] <= best) best = t[i], best_u = u[i], best_v = v[i], found = first + i;
+            // The lanes hit, in lane order (a block's empty lanes are flat): a mask's set bits,
+            // not a branch a lane, whose outcome is as random as the rays.
+            unsigned hits = 0;
+            for (std::size_t i = 0; i < lanes; ++i) hits |= unsigned(inside[i] & 1) << i;
+            for (; hits != 0; hits &= hits - 1) {
+                const int i = std::countr_zero(hits);
+                if (t[i] <= best) best = t[i], best_u = u[i], best_v = v[i], found = first + std::size_t(i);
+            }
         }
         if (found == ids_.size()) return std::nullopt;
         return local_hit{best, ids_[found], {1.0 - double(best_u) - double(best_v), double(best_u), double(best_v)},
