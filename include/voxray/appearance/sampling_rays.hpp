@@ -58,9 +58,8 @@ struct sampling_ray {
 };
 
 // How far a ray from point p of the unit cube along unit d goes before it leaves the cube:
-// to the nearest exit plane along each moving axis.
-// The three divisions are one vector division (each lane rounded as the scalar one): they
-// were the ray generator's longest wait.
+// to the nearest exit plane along each moving axis. The three divisions are one vector
+// division (each lane rounded as a scalar one): they were the ray generator's longest wait.
 inline double exit_length(glm::dvec3 p, glm::dvec3 d) {
     typedef double doubles __attribute__((vector_size(4 * sizeof(double))));
     const doubles far = {d.x > 0 ? 1.0 : 0.0, d.y > 0 ? 1.0 : 0.0, d.z > 0 ? 1.0 : 0.0, 0.0};
