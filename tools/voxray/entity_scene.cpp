@@ -285,11 +285,7 @@ std::vector<std::string> candidates_names() {
     return names;
 }
 
-std::string all_candidates() {
-    std::string all;
-    for (auto& n : candidates_names()) all += (all.empty() ? "" : ",") + n;
-    return all;
-}
+std::string all_candidates() { return join_names(candidates_names()); }
 
 int check_scene_file(const std::string& spec, const scene_options& o, int frames, std::size_t ray_count, std::uint64_t seed,
                      const std::string& worlds, const std::string& backends, const std::string& candidates) {
