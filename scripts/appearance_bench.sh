@@ -18,6 +18,7 @@ DATA="${VOXRAY_DATA_DIR:-$ROOT/../shared/data}"
 SCENES="${SCENES:-$DATA/mesh/stanford_bunny.ply $DATA/mesh/small_tree/scene.gltf $DATA/mesh/flight_helmet/FlightHelmet.gltf
     $DATA/mesh/kitchen/scene.gltf}"
 relative_scenes
+all_scenes=("${scenes[@]}")  # the shadows part narrows `scenes`; the walk part takes them all
 install_packages
 /usr/bin/python3 -c "import skimage" 2>/dev/null || {
     echo "== installing python3-skimage (the metrics' check)"
@@ -99,7 +100,7 @@ fi
 if [[ " ${PARTS:-plain shadows world walk} " == *" walk "* ]]; then
     results="$OUT/appearance_walk_results.jsonl"
     rm -f "$results"
-    for scene in "${scenes[@]}"; do
+    for scene in "${all_scenes[@]}"; do
         echo "== appearance-walk-bench $scene at 256"
         part="$OUT/appearance_walk_part.jsonl"
         "$TOOL" appearance-walk-bench "$scene" --resolution 256 --threads 2 --runs 5 --json "$part"

@@ -1,7 +1,7 @@
 // The compositing walk (appearance/walk.inc) on the CPU's scalar lanes over the dense grid:
 // opaque records stop it at the first-hit kernel's voxel; faint records blend every voxel
-// on the ray exactly once, touching voxels adding their coverage, voxels apart as layers; a
-// voxel with no record is an error that names it.
+// on the ray exactly once, touching voxels of one sheet adding their coverage, voxels apart
+// or turned apart as layers; a voxel with no record is an error that names it.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -205,6 +205,31 @@ TEST(appearance_walk, voxels_apart_blend_as_independent_layers) {
     EXPECT_EQ(p.visits, 2u);
     EXPECT_NEAR(p.transmittance, (1 - one.a) * (1 - one.a), 1e-6f);
     EXPECT_NEAR(p.r, one.a * one.r + (1 - one.a) * one.a * one.r, 1e-6f);
+}
+
+// Touching voxels make one run only while they show one sheet: a surface turned 60 degrees
+// from the last voxel's is a layer of its own (foliage), one turned 10 degrees the same sheet.
+TEST(appearance_walk, touching_voxels_turned_apart_blend_as_independent_layers) {
+    voxel_model two;
+    two.set({0, 0, 0}, 1);
+    two.set({0, 0, 1}, 1);
+    dense_grid grid(two);
+    std::vector<ray> column{{{0.5f, 0.5f, -3.0f}, 0.0f, {0.0f, 0.0f, 1.0f}, 1e30f}};
+    appearance_light down{.to_light = {0, 0, -1}, .ambient = 0.25f, .cutoff = 0.0f};
+    auto walk_turned = [&](float degrees) {
+        appearance_table table = uniform_table(two, 6);  // opacity 6/15 each
+        const float turn = glm::radians(degrees);
+        glm::vec2 e = octahedral({std::sin(turn), 0.0f, -std::cos(turn)});
+        table.faces[2 * 1 + 1] = VX_APP_FACE_WORD1(snorm(e.x, 12), snorm(e.y, 12), 0u);  // row 1: voxel (0, 0, 1)
+        appearance_walker<kernels::dense_grid_kernel> walker({grid.blob().begin(), grid.blob().end()}, table, 1);
+        return walker.walk(column, down)[0];
+    };
+    const float a = 6.0f / 15.0f;
+    appearance_pixel sheet = walk_turned(10.0f), leaves = walk_turned(60.0f);
+    EXPECT_EQ(sheet.visits, 2u);
+    EXPECT_EQ(leaves.visits, 2u);
+    EXPECT_NEAR(sheet.transmittance, 1.0f - 2.0f * a, 1e-6f);
+    EXPECT_NEAR(leaves.transmittance, (1.0f - a) * (1.0f - a), 1e-6f);
 }
 
 TEST(appearance_walk, a_voxel_without_a_record_is_an_error_that_names_it) {

@@ -26,14 +26,16 @@ VX_APP_FN vx_app_walk_result vx_app_walk_start(void) {
     return w;
 }
 
-/* A walk under way (walk.inc): what it has blended, the voxel it blended last and the run of
- * touching voxels that voxel ends (the run's transmittance before it, its coverage so far).
+/* A walk under way (walk.inc): what it has blended, the voxel it blended last (and the normal
+ * it showed) and the run of touching voxels that voxel ends (the run's transmittance before
+ * it, its coverage so far).
  * A walk through several pieces walked one after another (a world's chunks:
  * appearance/world/placed_walker.hpp) hands the state on, so that a surface crossing from one
  * piece into the next stays one run, as in one piece. */
 VX_STRUCT(vx_app_walk_state)
     vx_app_walk_result w;
     int px, py, pz;
+    float pnx, pny, pnz;
     float run_t, run_covered;
 VX_END_STRUCT(vx_app_walk_state)
 
@@ -41,6 +43,7 @@ VX_APP_FN vx_app_walk_state vx_app_walk_state_start(void) {
     vx_app_walk_state s;
     s.w = vx_app_walk_start();
     s.px = 0, s.py = 0, s.pz = 0;
+    s.pnx = 0.0f, s.pny = 0.0f, s.pnz = 0.0f;
     s.run_t = 1.0f, s.run_covered = 0.0f;
     return s;
 }

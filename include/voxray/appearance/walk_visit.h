@@ -28,6 +28,20 @@
 /* sum + x y z, rounded as written on every backend (no fused multiply-add). */
 VX_APP_FN float vx_app_add_product(float sum, float x, float y, float z) { return sum + x * y * z; }
 
+/* The least cosine between the normals two touching voxels show for them to be one sheet
+ * (about 18 degrees apart): see vx_app_walk_blend. */
+#define VX_APP_SHEET_COS 0.95f
+
+/* Whether unit normals (ax, ay, az) and (bx, by, bz), as two voxels show them, lie within
+ * VX_APP_SHEET_COS of each other; a voxel that shows no normal (0) goes with any. */
+VX_FN bool vx_app_walk_one_sheet(float ax, float ay, float az, float bx, float by, float bz) {
+    if ((ax == 0.0f && ay == 0.0f && az == 0.0f) || (bx == 0.0f && by == 0.0f && bz == 0.0f)) return true;
+    float d = vx_app_add_product(0.0f, ax, bx, 1.0f);
+    d = vx_app_add_product(d, ay, by, 1.0f);
+    d = vx_app_add_product(d, az, bz, 1.0f);
+    return d >= VX_APP_SHEET_COS;
+}
+
 VX_STRUCT(vx_app_walk_cursor)
     vx_app_walk_state s;
     vx_ray r;     /* the ray; its tmin moves past each voxel walked */
@@ -70,12 +84,15 @@ VX_FN vx_app_sample vx_app_walk_sample(VX_BLOB records, VX_BLOB faces, uint kind
 /* Blends `seen`, what voxel (x, y, z) shows, into the cursor's state: C += T a c, T *= 1 - a. */
 VX_FN vx_app_walk_cursor vx_app_walk_blend(vx_app_sample seen, uint kind, int x, int y, int z,
                                            vx_app_walk_cursor c) {
-    /* A run of touching voxels is one surface crossing: their coverages add up (a line
-     * crosses a sheet once); separate runs blend as independent layers. Faithful records
-     * keep the paper's rule: every voxel is a layer of its own. */
+    /* A run of touching voxels that show one sheet (their normals within VX_APP_SHEET_COS)
+     * is one surface crossing: their coverages add up (a line crosses a sheet once). Voxels
+     * apart, or touching ones that show surfaces turned apart (foliage: leaves at random
+     * angles, which a line crosses independently), blend as independent layers. Faithful
+     * records keep the paper's rule: every voxel is a layer of its own. */
     int gx = x - c.s.px, gy = y - c.s.py, gz = z - c.s.pz;
     bool apart = gx < -1 || gx > 1 || gy < -1 || gy > 1 || gz < -1 || gz > 1;
-    if (c.s.w.visits == 0u || apart || kind == VX_APP_KIND_FAITHFUL)
+    bool one_sheet = vx_app_walk_one_sheet(c.s.pnx, c.s.pny, c.s.pnz, seen.nx, seen.ny, seen.nz);
+    if (c.s.w.visits == 0u || apart || !one_sheet || kind == VX_APP_KIND_FAITHFUL)
         c.s.run_t = c.s.w.transmittance, c.s.run_covered = 0.0f;
     float a = vx_fmin(seen.a, 1.0f - c.s.run_covered);
     c.s.w.r = vx_app_add_product(c.s.w.r, c.s.run_t, a, seen.r);
@@ -88,6 +105,7 @@ VX_FN vx_app_walk_cursor vx_app_walk_blend(vx_app_sample seen, uint kind, int x,
     c.s.w.transmittance = c.s.run_t * (1.0f - c.s.run_covered);
     c.s.w.visits = c.s.w.visits + 1u;
     c.s.px = x, c.s.py = y, c.s.pz = z;
+    c.s.pnx = seen.nx, c.s.pny = seen.ny, c.s.pnz = seen.nz;
     return c;
 }
 
