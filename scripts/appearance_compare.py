@@ -8,20 +8,10 @@ appearance_compare.py BEFORE AFTER --out TABLE.md [--doc DOC.md --marker NAME]
   --doc          also put the table between <!-- NAME-table:begin --> and :end --> of DOC.md
 """
 import argparse
-from collections import defaultdict
 
-from appearance_table import load, put_in_doc
+from appearance_table import load, method_means, put_in_doc
 
 METHODS = ["averages", "sggx", "ours"]
-
-
-def means(rows):
-    """(scene, resolution, method) -> (MSE, SSIM, visits a ray), each the mean over views and lights."""
-    groups = defaultdict(list)
-    for r in rows:
-        groups[(r["scene"], r["resolution"], r["method"])].append(r)
-    mean = lambda g, key: sum(r[key] for r in g) / len(g)
-    return {k: (mean(g, "mse"), mean(g, "ssim"), mean(g, "visits_per_ray")) for k, g in groups.items()}
 
 
 def main():
@@ -33,13 +23,15 @@ def main():
     parser.add_argument("--marker")
     args = parser.parse_args()
     (head_b, rows_b), (head_a, rows_a) = load(args.before), load(args.after)
-    before, after = means(rows_b), means(rows_a)
+    before, after = method_means(rows_b), method_means(rows_a)
     lines = ["| scene | method | MSE before | MSE after | SSIM before | SSIM after | visits a ray before | after |",
              "|---|---|---:|---:|---:|---:|---:|---:|"]
-    for scene, resolution, method in sorted(k for k in after if k in before and k[2] in METHODS):
-        b, a = before[(scene, resolution, method)], after[(scene, resolution, method)]
-        lines.append("| %s at %d³ | %s | %.5f | %.5f | %.4f | %.4f | %.2f | %.2f |"
-                     % (scene, resolution, method, b[0], a[0], b[1], a[1], b[2], a[2]))
+    for (scene, resolution), methods in sorted(after.items()):
+        for method in sorted(m for m in methods if m in METHODS and m in before.get((scene, resolution), {})):
+            b, a = before[(scene, resolution)][method], methods[method]
+            lines.append("| %s at %d³ | %s | %.5f | %.5f | %.4f | %.4f | %.2f | %.2f |"
+                         % (scene, resolution, method, b["mse"], a["mse"], b["ssim"], a["ssim"], b["visits_per_ray"],
+                            a["visits_per_ray"]))
     lines.append("")
     commit = lambda head: head["git_commit"][:10] + (" with changes" if head["git_commit"].endswith("-dirty") else "")
     lines.append("Means over views × lights; before: commit %s, after: commit %s (%s, %s)."

@@ -79,20 +79,29 @@ def check_with_skimage(rows, strips):
     return check_strips(rows, strips, strip_name, methods, "appearance_table.py")
 
 
-def table(header, rows, agreement):
+MEAN_KEYS = ("mse", "mse_foreground", "ssim", "bytes_per_voxel", "precompute_us_per_voxel", "walk_fps",
+             "visits_per_ray")
+
+
+def method_means(rows):
+    """(scene, resolution) -> method -> each of MEAN_KEYS, the mean over the rows' views and
+    lights, and its voxels."""
     groups = {}
     for r in rows:
         groups.setdefault((r["scene"], r["resolution"]), {}).setdefault(r["method"], []).append(r)
+    return {group: {m: dict({k: float(np.mean([r[k] for r in rs])) for k in MEAN_KEYS}, voxels=rs[0]["voxels"])
+                    for m, rs in methods.items()}
+            for group, methods in groups.items()}
+
+
+def table(header, rows, agreement):
     out = ["| scene | voxels | method | MSE | MSE foreground | SSIM | bytes a voxel "
            "| precompute µs a voxel (%d threads) "
            "| walk fps (N² pixels × 4 rays at N³, %d threads) | visits a ray | targets |"
            % (rows[0]["precompute_threads"], rows[0]["walk_threads"]),
            "|---|---:|---|---:|---:|---:|---:|---:|---:|---:|---|"]
     missed = 0
-    for (scene, res), methods in sorted(groups.items(), key=lambda g: (g[0][1], g[0][0])):
-        mean = {m: {k: float(np.mean([r[k] for r in rs])) for k in
-                    ("mse", "mse_foreground", "ssim", "bytes_per_voxel", "precompute_us_per_voxel", "walk_fps",
-                     "visits_per_ray")} for m, rs in methods.items()}
+    for (scene, res), mean in sorted(method_means(rows).items(), key=lambda g: (g[0][1], g[0][0])):
         for m in METHODS:
             if m not in mean:
                 continue
@@ -112,7 +121,7 @@ def table(header, rows, agreement):
                     "met" if ssim_ok else "**missed**")
             v = mean[m]
             out.append("| %s at %d³ | %d | %s | %.5f | %.5f | %.4f | %.1f | %.1f | %.2f | %.2f | %s |" % (
-                scene, res, methods[m][0]["voxels"], m, v["mse"], v["mse_foreground"], v["ssim"], v["bytes_per_voxel"],
+                scene, res, v["voxels"], m, v["mse"], v["mse_foreground"], v["ssim"], v["bytes_per_voxel"],
                 v["precompute_us_per_voxel"], v["walk_fps"], v["visits_per_ray"], verdict))
     shadows = ("cast shadows in the reference, precomputed shadows (one ray a voxel) in every method but six "
                "directions (lit when made, unshadowed)" if any(r.get("shadows") for r in rows) else "no shadows")
