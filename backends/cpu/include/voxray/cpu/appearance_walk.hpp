@@ -98,49 +98,70 @@ private:
     // Rays a thread walks in rounds at once: their cursors stay in its cache.
     static constexpr std::size_t batch = 512;
 
-    // The walks of `rays` into `out`, in rounds: the closest hits of the rays still walking
-    // on the engine's SIMD lanes, then each one's enter; then, while any has a voxel to
-    // blend, those voxels' samples (on the SIMD lanes where the records have lane code) and
-    // a take each (appearance/walk_visit.h).
+    // What a thread's rounds work in, kept from batch to batch (no allocation a batch).
+    struct round_buffers {
+        std::vector<kernels::scalar::vx_app_walk_cursor> cursors;
+        std::vector<std::uint32_t> tracing, next_tracing;  // the cursors that want a closest hit
+        std::vector<std::uint32_t> blending;                // the cursors with a voxel to blend
+        std::vector<ray> rays;
+        std::vector<hit> hits;
+        std::vector<kernels::scalar::vx_app_sample> samples;
+        std::vector<cpu_detail::appearance_job> jobs;
+        void fit(std::size_t n) {
+            cursors.resize(n), rays.resize(n), hits.resize(n), blending.resize(n), samples.resize(n), jobs.resize(n);
+            tracing.clear(), next_tracing.clear();
+        }
+    };
+
+    // The walks of `rays` into `out`, in rounds: the closest hits of the rays that want one
+    // on the engine's SIMD lanes, then each one's enter; then, while voxels wait to be
+    // blended, their samples and a take each (appearance/walk_visit.h). Compact records are
+    // sampled on the SIMD lanes in whole lane groups: a voxel that would leave a group part
+    // empty waits for the next round's (its ray traces nothing meanwhile), unless no ray is
+    // left to trace. Each cursor's steps are the same in any order, so the pixels are too.
     void walk_in_rounds(std::span<const ray> rays, const appearance_light& light, std::uint32_t shadows_at,
                         std::span<appearance_pixel> out) const {
         namespace k = kernels::scalar;
         const k::vx_app_light l = lane_light(light);
-        std::vector<k::vx_app_walk_cursor> cursors(rays.size());
-        std::vector<std::uint32_t> going;  // the cursors still walking
+        thread_local round_buffers b;
+        b.fit(rays.size());
         for (std::size_t i = 0; i < rays.size(); ++i) {
-            cursors[i] = k::vx_app_walk_begin(cpu_detail::to_lane(rays[i]), start(), light.max_visits);
-            if (cursors[i].going) going.push_back(std::uint32_t(i));
+            b.cursors[i] = k::vx_app_walk_begin(cpu_detail::to_lane(rays[i]), start(), light.max_visits);
+            if (b.cursors[i].going) b.tracing.push_back(std::uint32_t(i));
         }
-        std::vector<ray> next(going.size());
-        std::vector<hit> hits(going.size());
-        std::vector<std::uint32_t> blending(going.size());  // the cursors with a voxel to blend
-        std::vector<k::vx_app_sample> samples(going.size());
-        std::vector<cpu_detail::appearance_job> jobs(going.size());
-        while (!going.empty()) {
-            for (std::size_t j = 0; j < going.size(); ++j) next[j] = cpu_detail::from_lane(cursors[going[j]].r);
-            engine_.template trace_here<VX_MODE_CLOSEST>(std::span(next).first(going.size()),
-                                                          std::span(hits).first(going.size()));
-            std::size_t count = 0;
-            for (std::size_t j = 0; j < going.size(); ++j) {
-                k::vx_app_walk_cursor& c = cursors[going[j]];
-                c = k::vx_app_walk_enter(words_.index.data(), light.max_visits, cpu_detail::to_lane(hits[j]), c);
-                if (c.row != VX_APP_NO_ROW) blending[count++] = going[j];
+        const std::size_t group = words_.kind == VX_APP_KIND_COMPACT ? engine_.simd_width() : 1;
+        std::size_t waiting = 0;  // b.blending[0, waiting): the cursors with a voxel to blend
+        while (!b.tracing.empty() || waiting > 0) {
+            b.next_tracing.clear();
+            const std::size_t n = b.tracing.size();
+            for (std::size_t j = 0; j < n; ++j) b.rays[j] = cpu_detail::from_lane(b.cursors[b.tracing[j]].r);
+            engine_.template trace_here<VX_MODE_CLOSEST>(std::span(b.rays).first(n), std::span(b.hits).first(n));
+            for (std::size_t j = 0; j < n; ++j) {
+                k::vx_app_walk_cursor& c = b.cursors[b.tracing[j]];
+                c = k::vx_app_walk_enter(words_.index.data(), light.max_visits, cpu_detail::to_lane(b.hits[j]), c);
+                if (c.row != VX_APP_NO_ROW) b.blending[waiting++] = b.tracing[j];
+                else if (c.going) b.next_tracing.push_back(b.tracing[j]);
             }
-            while (count > 0) {
-                sample(cursors, std::span(blending).first(count), l, shadows_at, jobs, samples);
+            while (waiting > 0) {
+                const bool last = b.next_tracing.empty();  // no round follows: blend every voxel waiting
+                const std::size_t now = last ? waiting : waiting / group * group;
+                if (now == 0) break;
+                sample(b.cursors, std::span(b.blending).first(now), l, shadows_at, b.jobs, b.samples);
                 std::size_t kept = 0;
-                for (std::size_t j = 0; j < count; ++j) {
-                    k::vx_app_walk_cursor& c = cursors[blending[j]];
+                for (std::size_t j = 0; j < now; ++j) {
+                    k::vx_app_walk_cursor& c = b.cursors[b.blending[j]];
                     c = k::vx_app_walk_take(words_.index.data(), words_.kind, light.cutoff, light.max_visits,
-                                            samples[j], c);
-                    if (c.row != VX_APP_NO_ROW) blending[kept++] = blending[j];
+                                            b.samples[j], c);
+                    if (c.row != VX_APP_NO_ROW) b.blending[kept++] = b.blending[j];
+                    else if (c.going) b.next_tracing.push_back(b.blending[j]);
                 }
-                count = kept;
+                std::copy(b.blending.begin() + std::ptrdiff_t(now), b.blending.begin() + std::ptrdiff_t(waiting),
+                          b.blending.begin() + std::ptrdiff_t(kept));
+                waiting = kept + (waiting - now);
             }
-            std::erase_if(going, [&](std::uint32_t i) { return cursors[i].going == 0u; });
+            std::swap(b.tracing, b.next_tracing);
         }
-        for (std::size_t i = 0; i < rays.size(); ++i) out[i] = std::bit_cast<appearance_pixel>(cursors[i].s.w);
+        for (std::size_t i = 0; i < rays.size(); ++i) out[i] = std::bit_cast<appearance_pixel>(b.cursors[i].s.w);
     }
 
     // What the voxel each cursor of `which` is to blend shows, into samples[0...] (jobs: room
