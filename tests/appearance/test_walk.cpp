@@ -220,7 +220,8 @@ TEST(appearance_walk, touching_voxels_turned_apart_blend_as_independent_layers) 
         appearance_table table = uniform_table(two, 6);  // opacity 6/15 each
         const float turn = glm::radians(degrees);
         glm::vec2 e = octahedral({std::sin(turn), 0.0f, -std::cos(turn)});
-        table.faces[2 * 1 + 1] = VX_APP_FACE_WORD1(snorm(e.x, 12), snorm(e.y, 12), 0u);  // row 1: voxel (0, 0, 1)
+        // row 1 (voxel (0, 0, 1)) has one face, face 1: its word 1 holds the normal
+        table.faces[VX_APP_FACE_WORDS * 1 + 1] = VX_APP_FACE_WORD1(snorm(e.x, 12), snorm(e.y, 12), 0u);
         appearance_walker<kernels::dense_grid_kernel> walker({grid.blob().begin(), grid.blob().end()}, table, 1);
         return walker.walk(column, down)[0];
     };
