@@ -177,21 +177,24 @@ TEST(appearance_walk_backends, compact_samples_on_simd_lanes_are_the_scalar_lane
         return glm::normalize(d);
     };
     for (std::size_t count : {1u, 7u, 8u, 9u, 16u, 33u, 1000u}) {
-        std::vector<cpu_detail::appearance_job> jobs(count);
+        cpu_detail::appearance_round round;
+        round.fit(count);
         std::vector<k::vx_app_sample> want(count);
         for (std::size_t i = 0; i < count; ++i) {
             glm::vec3 d = direction(), l = direction() * unit(random);
-            jobs[i] = {std::uint32_t(random() % rows), d.x, d.y, d.z, {l.x, l.y, l.z, unit(random)}};
-            want[i] = k::vx_app_compact_sample(records.data(), faces.data(), jobs[i].row, d.x, d.y, d.z, jobs[i].light);
+            const std::uint32_t row = std::uint32_t(random() % rows);
+            const k::vx_app_light light{l.x, l.y, l.z, unit(random)};
+            round.set_job(i, row, d.x, d.y, d.z, light);
+            want[i] = k::vx_app_compact_sample(records.data(), faces.data(), row, d.x, d.y, d.z, light);
         }
         for (unsigned width : simd_widths()) {
-            std::vector<k::vx_app_sample> got(count);
-            cpu_detail::sample_lanes<VX_APP_KIND_COMPACT>(width, records.data(), faces.data(), jobs.data(),
-                                                          got.data(), count);
-            for (std::size_t i = 0; i < count; ++i)
-                ASSERT_EQ(std::memcmp(&want[i], &got[i], sizeof want[i]), 0)
+            cpu_detail::sample_lanes<VX_APP_KIND_COMPACT>(width, records.data(), faces.data(), round, count);
+            for (std::size_t i = 0; i < count; ++i) {
+                const k::vx_app_sample got = round.sample(i);
+                ASSERT_EQ(std::memcmp(&want[i], &got, sizeof want[i]), 0)
                     << width << " lanes, job " << i << " of " << count << ": r " << want[i].r << " against "
-                    << got[i].r << ", a " << want[i].a << " against " << got[i].a;
+                    << got.r << ", a " << want[i].a << " against " << got.a;
+            }
         }
     }
 }

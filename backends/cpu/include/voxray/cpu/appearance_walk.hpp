@@ -11,6 +11,7 @@
 //   std::vector<voxray::appearance_pixel> out = walker.walk(rays, light);
 #pragma once
 #include <algorithm>
+#include <array>
 #include <bit>
 #include <cmath>
 #include <cstdint>
@@ -103,12 +104,12 @@ private:
         std::vector<kernels::scalar::vx_app_walk_cursor> cursors;
         std::vector<std::uint32_t> tracing, next_tracing;  // the cursors that want a closest hit
         std::vector<std::uint32_t> blending;                // the cursors with a voxel to blend
+        std::vector<std::uint32_t> sorted;                  // blending's first entries by faces
         std::vector<ray> rays;
         std::vector<hit> hits;
-        std::vector<kernels::scalar::vx_app_sample> samples;
-        std::vector<cpu_detail::appearance_job> jobs;
+        cpu_detail::appearance_round round;  // the samples' jobs and samples
         void fit(std::size_t n) {
-            cursors.resize(n), rays.resize(n), hits.resize(n), blending.resize(n), samples.resize(n), jobs.resize(n);
+            cursors.resize(n), rays.resize(n), hits.resize(n), blending.resize(n), sorted.resize(n), round.fit(n);
             tracing.clear(), next_tracing.clear();
         }
     };
@@ -146,12 +147,13 @@ private:
                 const bool last = b.next_tracing.empty();  // no round follows: blend every voxel waiting
                 const std::size_t now = last ? waiting : waiting / group * group;
                 if (now == 0) break;
-                sample(b.cursors, std::span(b.blending).first(now), l, shadows_at, b.jobs, b.samples);
+                if (group > 1) by_faces(b.cursors, std::span(b.blending).first(now), b.sorted);
+                sample(b.cursors, std::span(b.blending).first(now), l, shadows_at, b.round);
                 std::size_t kept = 0;
                 for (std::size_t j = 0; j < now; ++j) {
                     k::vx_app_walk_cursor& c = b.cursors[b.blending[j]];
                     c = k::vx_app_walk_take(words_.index.data(), words_.kind, light.cutoff, light.max_visits,
-                                            b.samples[j], c);
+                                            b.round.sample(j), c);
                     if (c.row != VX_APP_NO_ROW) b.blending[kept++] = b.blending[j];
                     else if (c.going) b.next_tracing.push_back(b.blending[j]);
                 }
@@ -164,25 +166,41 @@ private:
         for (std::size_t i = 0; i < rays.size(); ++i) out[i] = std::bit_cast<appearance_pixel>(b.cursors[i].s.w);
     }
 
-    // What the voxel each cursor of `which` is to blend shows, into samples[0...] (jobs: room
-    // for as many).
+    // Reorders `which` (cursors whose voxels have compact records) by their records' faces, so
+    // that a lane group's records have about as many: the faces' loop runs to the most any
+    // lane has (on the bunny a record held 2.1 faces on average, but the loop ran 3.8 times
+    // a record). Stable; the takes' order does not matter. `sorted`: room for as many.
+    void by_faces(std::span<const kernels::scalar::vx_app_walk_cursor> cursors, std::span<std::uint32_t> which,
+                  std::span<std::uint32_t> sorted) const {
+        std::array<std::uint32_t, VX_APP_MAX_FACES + 2> start{};  // start[f + 1]: records with f faces
+        auto faces_of = [&](std::uint32_t cursor) {
+            return std::min<std::uint32_t>(VX_APP_FACES(words_.records[cursors[cursor].row * VX_APP_COMPACT_WORDS + 1]),
+                                           VX_APP_MAX_FACES);
+        };
+        for (std::uint32_t cursor : which) ++start[faces_of(cursor) + 1];
+        for (std::size_t f = 1; f < start.size(); ++f) start[f] += start[f - 1];
+        for (std::uint32_t cursor : which) sorted[start[faces_of(cursor)]++] = cursor;
+        std::copy(sorted.begin(), sorted.begin() + std::ptrdiff_t(which.size()), which.begin());
+    }
+
+    // What the voxel each cursor of `which` is to blend shows, into round's samples [0...).
     void sample(std::span<const kernels::scalar::vx_app_walk_cursor> cursors, std::span<const std::uint32_t> which,
                 const kernels::scalar::vx_app_light& l, std::uint32_t shadows_at,
-                std::span<cpu_detail::appearance_job> jobs, std::span<kernels::scalar::vx_app_sample> samples) const {
+                cpu_detail::appearance_round& round) const {
         namespace k = kernels::scalar;
         if (words_.kind != VX_APP_KIND_COMPACT) {
             for (std::size_t j = 0; j < which.size(); ++j)
-                samples[j] = k::vx_app_walk_sample(words_.records.data(), words_.faces.data(), words_.kind, l,
-                                                   shadows_at, cursors[which[j]]);
+                round.set_sample(j, k::vx_app_walk_sample(words_.records.data(), words_.faces.data(), words_.kind, l,
+                                                          shadows_at, cursors[which[j]]));
             return;
         }
         for (std::size_t j = 0; j < which.size(); ++j) {
             const k::vx_app_walk_cursor& c = cursors[which[j]];
-            k::vx_app_light lit = k::vx_app_walk_light(words_.records.data(), l, shadows_at, c.row);
-            jobs[j] = {c.row, c.r.dx, c.r.dy, c.r.dz, lit};
+            round.set_job(j, c.row, c.r.dx, c.r.dy, c.r.dz,
+                          k::vx_app_walk_light(words_.records.data(), l, shadows_at, c.row));
         }
         cpu_detail::sample_lanes<VX_APP_KIND_COMPACT>(engine_.simd_width(), words_.records.data(),
-                                                      words_.faces.data(), jobs.data(), samples.data(), which.size());
+                                                      words_.faces.data(), round, which.size());
     }
 
     static cpu_options borrowing(cpu_options o) {
