@@ -193,5 +193,28 @@ TEST(appearance_records, the_face_quadrature_against_a_sample_mean) {
     std::printf("face quadrature: within %.4f of the 10^5-sample mean over 200 views and lights\n", worst);
 }
 
+// A record whose faces all turn away from the ray shows them turned round (record.h): its
+// colour lit as if each normal pointed the other way, and its own normal, away from the
+// viewer. One face of normal +z, no spread (its four nodes are the normal), seen along +z.
+TEST(appearance_records, faces_seen_from_behind_show_turned_round) {
+    voxel_face face;
+    face.normal = glm::dvec3(0, 0, 1), face.colour = glm::dvec4(0.5, 0.25, 0.75, 1.0), face.share = 1;
+    compact_record r = make_compact_record({face}, directional_opacities{});
+    std::vector<std::uint32_t> head(r.head.begin(), r.head.end());
+    const glm::vec3 to_light = glm::normalize(glm::vec3(0.3f, 0.2f, -1.0f));  // lights the turned face, not +z
+    const float ambient = 0.2f;
+    kernels::scalar::vx_app_light light{to_light.x, to_light.y, to_light.z, ambient};
+    auto got = kernels::scalar::vx_app_compact_sample(head.data(), r.faces.data(), 0u, 0.0f, 0.0f, 1.0f, light);
+    const double lambert = ambient + (1 - ambient) * std::max(-double(to_light.z), 0.0);
+    const glm::dvec3 colour = face.colour;
+    for (int c = 0; c < 3; ++c) {
+        const double want = srgb_cubic(srgb_code(colour[c])) * lambert, at[3] = {got.r, got.g, got.b};
+        EXPECT_NEAR(at[c], want, 1e-5) << "channel " << c;
+    }
+    EXPECT_NEAR(got.nz, 1.0f, 1e-3f);  // the face's own normal: away from the viewer
+    EXPECT_NEAR(got.nx, 0.0f, 1e-3f);
+    EXPECT_NEAR(got.ny, 0.0f, 1e-3f);
+}
+
 }  // namespace
 }  // namespace voxray

@@ -106,60 +106,90 @@ VX_APP_FN vx_f32 vx_app_shade(vx_app_vec n, vx_app_light light) {
     return vx_app_lambert(vx_app_dot(n, light.lx, light.ly, light.lz), light);
 }
 
+/* A compact record's face, decoded (face words f0, f1): its mean normal n, a frame (t, u)
+ * across it that comes from n alone (Duff et al.'s branchless basis, so every backend gets
+ * it), its ring's spread (the tangent of its angle) and 1 / sqrt(1 + spread^2), its share of
+ * the surface and its linear colour. */
+VX_STRUCT(vx_app_face)
+    vx_app_vec n, t, u;
+    vx_f32 spread, ring, weight, r, g, b;
+VX_END_STRUCT(vx_app_face)
+
+VX_APP_FN vx_app_face vx_app_decode_face(vx_u32 f0, vx_u32 f1) {
+    vx_app_face face;
+    face.n = vx_app_octahedral(vx_app_snorm(VX_APP_FACE_NORMAL_U(f1), 12u), vx_app_snorm(VX_APP_FACE_NORMAL_V(f1), 12u));
+    face.spread = vx_u2f(VX_APP_FACE_SPREAD(f1)) * (VX_APP_SPREAD_MAX / 255.0f);
+    vx_app_vec n = face.n;
+    vx_f32 sign = vx_sel(n.z < 0.0f, vx_f32_splat(-1.0f), vx_f32_splat(1.0f));
+    vx_f32 a = -1.0f / (sign + n.z), b = n.x * n.y * a;
+    face.t.x = 1.0f + sign * n.x * n.x * a, face.t.y = sign * b, face.t.z = -sign * n.x;
+    face.u.x = b, face.u.y = sign + n.y * n.y * a, face.u.z = -n.y;
+    face.ring = 1.0f / vx_sqrt(1.0f + face.spread * face.spread);
+    face.weight = vx_u2f(VX_APP_FACE_WEIGHT(f0));
+    face.r = vx_app_linear8(VX_APP_FACE_R(f0)), face.g = vx_app_linear8(VX_APP_FACE_G(f0));
+    face.b = vx_app_linear8(VX_APP_FACE_B(f0));
+    return face;
+}
+
+/* `sum` plus what `face` shows along unit ray direction (dx, dy, dz) in the lanes of `on`:
+ * its colour, shaded at four fixed quadrature nodes of equal weight, each node weighted by
+ * the area it turns to the viewer, max(0, -m . d), and the face by its share of the surface;
+ * side -1 takes the normals turned round (the face seen from behind). Adds the weighted
+ * colour to r, g, b, the weight to a, and the face's mean normal (as `side` turns it)
+ * weighted alike to n. The nodes are n and three normals on a ring around it, 120 degrees
+ * apart: m = (n + spread (c t + s u)) / sqrt(1 + spread^2) for (c, s) = (1, 0),
+ * (-1/2, +-sqrt(3)/2). A node enters only through m . d and m . l, so the face takes n, t and
+ * u against d and l once, and its nodes from those. */
+VX_APP_FN vx_app_sample vx_app_face_seen(vx_app_sample sum, vx_app_face face, vx_f32 dx, vx_f32 dy, vx_f32 dz,
+                                         vx_app_light light, float side, vx_mask on) {
+    /* the frame against the ray and the light, turned by `side`; the ring's part scaled by spread */
+    vx_f32 nd = side * vx_app_dot(face.n, dx, dy, dz), nl = side * vx_app_dot(face.n, light.lx, light.ly, light.lz);
+    vx_f32 td = side * face.spread * vx_app_dot(face.t, dx, dy, dz);
+    vx_f32 tl = side * face.spread * vx_app_dot(face.t, light.lx, light.ly, light.lz);
+    vx_f32 ud = side * face.spread * vx_app_dot(face.u, dx, dy, dz);
+    vx_f32 ul = side * face.spread * vx_app_dot(face.u, light.lx, light.ly, light.lz);
+    vx_f32 area = vx_f32_splat(0.0f), lit = area;
+    for (uint q = 0u; q < 4u; ++q) {
+        float c = q == 0u ? 0.0f : (q == 1u ? 1.0f : -0.5f);
+        float s = q < 2u ? 0.0f : (q == 2u ? 0.86602540f : -0.86602540f);
+        vx_f32 scale = q == 0u ? vx_f32_splat(1.0f) : face.ring;
+        vx_f32 md = (nd + c * td + s * ud) * scale, ml = (nl + c * tl + s * ul) * scale;
+        vx_f32 facing = vx_fmax(-md, 0.0f) * 0.25f;
+        area = area + facing;
+        lit = lit + facing * vx_app_lambert(ml, light);
+    }
+    /* the face's own mean normal, by the area it shows (the nodes' would lean to the viewer) */
+    vx_f32 weight = face.weight;
+    sum.nx = vx_sel(on, sum.nx + weight * area * side * face.n.x, sum.nx);
+    sum.ny = vx_sel(on, sum.ny + weight * area * side * face.n.y, sum.ny);
+    sum.nz = vx_sel(on, sum.nz + weight * area * side * face.n.z, sum.nz);
+    sum.a = vx_sel(on, sum.a + weight * area, sum.a);
+    lit = lit * weight;
+    sum.r = vx_sel(on, sum.r + lit * face.r, sum.r);
+    sum.g = vx_sel(on, sum.g + lit * face.g, sum.g);
+    sum.b = vx_sel(on, sum.b + lit * face.b, sum.b);
+    return sum;
+}
+
 /* The faces of a compact record along unit ray direction (dx, dy, dz), in the lanes of
- * `lanes`: each face's colour, shaded at four fixed quadrature nodes of equal weight, each
- * node weighted by the area it turns to the viewer, max(0, -m . d), and the face by its share
- * of the surface; side -1 takes the normals turned round (the faces seen from behind).
- * Returns the weighted colour sum in r, g, b, the sum of the weights in a, and the faces'
- * mean normals (as `side` turns them) weighted alike in n.
- * The nodes are the face's mean normal n and three normals on a ring around it, 120 degrees
- * apart, `spread` (the ring's tangent) away: m = (n + spread (c t + s u)) / sqrt(1 + spread^2)
- * for (c, s) = (1, 0), (-1/2, +-sqrt(3)/2), in a frame (t, u) across n that comes from n alone
- * (Duff et al.'s branchless basis), so every backend gets it. A node enters only through
- * m . d and m . l, so a face takes n, t and u against d and l once, and its nodes from those. */
-VX_APP_FN vx_app_sample vx_app_compact_faces(VX_BLOB faces, vx_u32 first, vx_u32 count, vx_f32 dx, vx_f32 dy,
-                                             vx_f32 dz, vx_app_light light, float side, vx_mask lanes) {
-    vx_app_sample sum = vx_app_no_sample();
+ * `lanes`, seen from the front (`front`) and turned round (`back`, every face as if from
+ * behind): vx_app_face_seen summed over the faces, each face decoded once for both. */
+VX_STRUCT(vx_app_faces_seen)
+    vx_app_sample front, back;
+VX_END_STRUCT(vx_app_faces_seen)
+
+VX_APP_FN vx_app_faces_seen vx_app_compact_faces(VX_BLOB faces, vx_u32 first, vx_u32 count, vx_f32 dx, vx_f32 dy,
+                                                 vx_f32 dz, vx_app_light light, vx_mask lanes) {
+    vx_app_faces_seen seen;
+    seen.front = vx_app_no_sample(), seen.back = vx_app_no_sample();
     for (uint f = 0u; vx_any(lanes && count > f); ++f) {
         vx_mask on = lanes && count > f;  /* the lanes whose record has face f */
         vx_u32 at = (first + f) * VX_APP_FACE_WORDS;
-        vx_u32 f0 = vx_gather_masked(faces, on, at), f1 = vx_gather_masked(faces, on, at + 1u);
-        vx_app_vec n = vx_app_octahedral(vx_app_snorm(VX_APP_FACE_NORMAL_U(f1), 12u),
-                                         vx_app_snorm(VX_APP_FACE_NORMAL_V(f1), 12u));
-        vx_f32 spread = vx_u2f(VX_APP_FACE_SPREAD(f1)) * (VX_APP_SPREAD_MAX / 255.0f);
-        vx_f32 sign = vx_sel(n.z < 0.0f, vx_f32_splat(-1.0f), vx_f32_splat(1.0f));
-        vx_f32 a = -1.0f / (sign + n.z), b = n.x * n.y * a;
-        vx_app_vec t, u;
-        t.x = 1.0f + sign * n.x * n.x * a, t.y = sign * b, t.z = -sign * n.x;
-        u.x = b, u.y = sign + n.y * n.y * a, u.z = -n.y;
-        /* the frame against the ray and the light, turned by `side`; the ring's part scaled by spread */
-        vx_f32 nd = side * vx_app_dot(n, dx, dy, dz), nl = side * vx_app_dot(n, light.lx, light.ly, light.lz);
-        vx_f32 td = side * spread * vx_app_dot(t, dx, dy, dz);
-        vx_f32 tl = side * spread * vx_app_dot(t, light.lx, light.ly, light.lz);
-        vx_f32 ud = side * spread * vx_app_dot(u, dx, dy, dz);
-        vx_f32 ul = side * spread * vx_app_dot(u, light.lx, light.ly, light.lz);
-        vx_f32 ring = 1.0f / vx_sqrt(1.0f + spread * spread);
-        vx_f32 area = vx_f32_splat(0.0f), lit = area, weight = vx_u2f(VX_APP_FACE_WEIGHT(f0));
-        for (uint q = 0u; q < 4u; ++q) {
-            float c = q == 0u ? 0.0f : (q == 1u ? 1.0f : -0.5f);
-            float s = q < 2u ? 0.0f : (q == 2u ? 0.86602540f : -0.86602540f);
-            vx_f32 scale = q == 0u ? vx_f32_splat(1.0f) : ring;
-            vx_f32 md = (nd + c * td + s * ud) * scale, ml = (nl + c * tl + s * ul) * scale;
-            vx_f32 facing = vx_fmax(-md, 0.0f) * 0.25f;
-            area = area + facing;
-            lit = lit + facing * vx_app_lambert(ml, light);
-        }
-        /* the face's own mean normal, by the area it shows (the nodes' would lean to the viewer) */
-        sum.nx = vx_sel(on, sum.nx + weight * area * side * n.x, sum.nx);
-        sum.ny = vx_sel(on, sum.ny + weight * area * side * n.y, sum.ny);
-        sum.nz = vx_sel(on, sum.nz + weight * area * side * n.z, sum.nz);
-        sum.a = vx_sel(on, sum.a + weight * area, sum.a);
-        lit = lit * weight;
-        sum.r = vx_sel(on, sum.r + lit * vx_app_linear8(VX_APP_FACE_R(f0)), sum.r);
-        sum.g = vx_sel(on, sum.g + lit * vx_app_linear8(VX_APP_FACE_G(f0)), sum.g);
-        sum.b = vx_sel(on, sum.b + lit * vx_app_linear8(VX_APP_FACE_B(f0)), sum.b);
+        vx_app_face face = vx_app_decode_face(vx_gather_masked(faces, on, at), vx_gather_masked(faces, on, at + 1u));
+        seen.front = vx_app_face_seen(seen.front, face, dx, dy, dz, light, 1.0f, on);
+        seen.back = vx_app_face_seen(seen.back, face, dx, dy, dz, light, -1.0f, on);
     }
-    return sum;
+    return seen;
 }
 
 /* What record `row` of a compact table shows along unit ray direction (dx, dy, dz): the
@@ -172,17 +202,15 @@ VX_APP_FN vx_app_sample vx_app_compact_sample(VX_BLOB records, VX_BLOB faces, vx
     vx_u32 at = row * VX_APP_COMPACT_WORDS;
     vx_u32 h0 = vx_gather(records, at), h1 = vx_gather(records, at + 1u), h2 = vx_gather(records, at + 2u);
     vx_u32 first = VX_APP_FIRST_FACE(h0), count = VX_APP_FACES(h1);
-    vx_app_sample got = vx_app_compact_faces(faces, first, count, dx, dy, dz, light, 1.0f, count > 0u);
+    vx_app_faces_seen seen = vx_app_compact_faces(faces, first, count, dx, dy, dz, light, count > 0u);
+    vx_app_sample got = seen.front, turned = seen.back;
     vx_mask back = got.a <= 0.0f;
-    if (vx_any(back)) {
-        vx_app_sample turned = vx_app_compact_faces(faces, first, count, dx, dy, dz, light, -1.0f, back);
-        /* the normal the faces have, away from the viewer: a re-sampling ray can tell it met
-         * the surface from behind */
-        got.r = vx_sel(back, turned.r, got.r), got.g = vx_sel(back, turned.g, got.g);
-        got.b = vx_sel(back, turned.b, got.b), got.a = vx_sel(back, turned.a, got.a);
-        got.nx = vx_sel(back, -turned.nx, got.nx), got.ny = vx_sel(back, -turned.ny, got.ny);
-        got.nz = vx_sel(back, -turned.nz, got.nz);
-    }
+    /* the normal the faces have, away from the viewer: a re-sampling ray can tell it met the
+     * surface from behind */
+    got.r = vx_sel(back, turned.r, got.r), got.g = vx_sel(back, turned.g, got.g);
+    got.b = vx_sel(back, turned.b, got.b), got.a = vx_sel(back, turned.a, got.a);
+    got.nx = vx_sel(back, -turned.nx, got.nx), got.ny = vx_sel(back, -turned.ny, got.ny);
+    got.nz = vx_sel(back, -turned.nz, got.nz);
     vx_f32 inv = vx_sel(got.a > 0.0f, 1.0f / got.a, vx_f32_splat(0.0f));
     got.r = got.r * inv, got.g = got.g * inv, got.b = got.b * inv;
     got.a = vx_app_opacity(h1, h2, dx, dy, dz);
