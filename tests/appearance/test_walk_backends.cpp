@@ -7,6 +7,7 @@
 
 #include <cstdio>
 #include <cstring>
+#include <limits>
 #include <random>
 #include <string>
 
@@ -187,7 +188,9 @@ TEST(appearance_walk_backends, compact_samples_on_simd_lanes_are_the_scalar_lane
             round.set_job(i, row, d.x, d.y, d.z, light);
             want[i] = k::vx_app_compact_sample(records.data(), faces.data(), row, d.x, d.y, d.z, light);
         }
+        const float nan = std::numeric_limits<float>::quiet_NaN();
         for (unsigned width : simd_widths()) {
+            for (std::size_t i = 0; i < count; ++i) round.set_sample(i, {nan, nan, nan, nan, nan, nan, nan});
             cpu_detail::sample_lanes<VX_APP_KIND_COMPACT>(width, records.data(), faces.data(), round, count);
             for (std::size_t i = 0; i < count; ++i) {
                 const k::vx_app_sample got = round.sample(i);

@@ -117,7 +117,8 @@ VX_END_STRUCT(vx_app_face)
 
 VX_APP_FN vx_app_face vx_app_decode_face(vx_u32 f0, vx_u32 f1) {
     vx_app_face face;
-    face.n = vx_app_octahedral(vx_app_snorm(VX_APP_FACE_NORMAL_U(f1), 12u), vx_app_snorm(VX_APP_FACE_NORMAL_V(f1), 12u));
+    face.n = vx_app_octahedral(vx_app_snorm(VX_APP_FACE_NORMAL_U(f1), 12u),
+                               vx_app_snorm(VX_APP_FACE_NORMAL_V(f1), 12u));
     face.spread = vx_u2f(VX_APP_FACE_SPREAD(f1)) * (VX_APP_SPREAD_MAX / 255.0f);
     vx_app_vec n = face.n;
     vx_f32 sign = vx_sel(n.z < 0.0f, vx_f32_splat(-1.0f), vx_f32_splat(1.0f));
